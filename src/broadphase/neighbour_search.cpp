@@ -1,0 +1,189 @@
+#include "broadphase/neighbour_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace geodem {
+
+namespace {
+
+// Copies the history of the pairs of `old_row` that are also in the new row.
+// Both rows are sorted by partner index: one linear merge.
+template <typename Vec>
+void merge_history(const std::uint32_t* old_other, const Vec* old_spring, std::size_t old_n,
+                   const std::uint32_t* new_other, Vec* new_spring, std::size_t new_n) {
+  std::size_t a = 0;
+  for (std::size_t b = 0; b < new_n; ++b) {
+    while (a < old_n && old_other[a] < new_other[b]) ++a;
+    new_spring[b] = (a < old_n && old_other[a] == new_other[b]) ? old_spring[a] : Vec::Zero();
+  }
+}
+
+template <int D>
+struct Grid {
+  using Vec = typename Dim<D>::Vec;
+  Vec lo;
+  double inv_cell = 1.0;
+  std::array<int, 3> dims{1, 1, 1};
+  std::vector<std::uint32_t> cell_start;  // per cell, into `sorted`
+  std::vector<std::uint32_t> sorted;      // grain indices grouped by cell
+  std::vector<std::uint32_t> cell_of;
+
+  int coord(const Vec& x, int k) const {
+    const int c = static_cast<int>(std::floor((x[k] - lo[k]) * inv_cell));
+    return std::clamp(c, 0, dims[k] - 1);  // clamping keeps neighbours adjacent
+  }
+  std::uint32_t cell_index(const std::array<int, 3>& c) const {
+    return static_cast<std::uint32_t>((c[2] * dims[1] + c[1]) * dims[0] + c[0]);
+  }
+};
+
+}  // namespace
+
+template <int D>
+double skin_length(const World<D>& world) {
+  const auto& r = world.particles.radius;
+  if (r.empty()) return 0.0;
+  double sum = 0.0;
+  for (double v : r) sum += v;
+  return world.skin_factor * sum / static_cast<double>(r.size());
+}
+
+template <int D>
+void build_neighbour_list(World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  auto& P = world.particles;
+  auto& L = world.nlist;
+  const std::size_t n = P.size();
+  L.skin = skin_length(world);
+
+  // Keep the old rows to merge their history.
+  static thread_local NeighbourList<D> old;
+  std::swap(old.start, L.start);
+  std::swap(old.other, L.other);
+  std::swap(old.spring, L.spring);
+  std::swap(old.wall_start, L.wall_start);
+  std::swap(old.wall, L.wall);
+  std::swap(old.wall_spring, L.wall_spring);
+  const bool have_old = old.start.size() == n + 1;
+
+  L.start.assign(n + 1, 0);
+  L.other.clear();
+  L.spring.clear();
+  L.wall_start.assign(n + 1, 0);
+  L.wall.clear();
+  L.wall_spring.clear();
+
+  if (n > 0) {
+    // Grid bounds: the grains' bounding box; far outliers are clamped to the edge cells.
+    Vec lo = P.pos[0], hi = P.pos[0];
+    double rmax = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      lo = lo.cwiseMin(P.pos[i]);
+      hi = hi.cwiseMax(P.pos[i]);
+      rmax = std::max(rmax, P.radius[i]);
+    }
+    double cell = 2.0 * rmax + L.skin;
+    // Bound the number of cells to a few per grain, whatever the spread.
+    const double max_cells = 4.0 * static_cast<double>(n) + 64.0;
+    for (;;) {
+      double cells = 1.0;
+      for (int k = 0; k < D; ++k) cells *= std::floor((hi[k] - lo[k]) / cell) + 1.0;
+      if (cells <= max_cells) break;
+      cell *= 1.25;
+    }
+    static thread_local Grid<D> g;
+    g.lo = lo;
+    g.inv_cell = 1.0 / cell;
+    for (int k = 0; k < D; ++k)
+      g.dims[k] = static_cast<int>(std::floor((hi[k] - lo[k]) / cell)) + 1;
+    const std::size_t ncells = static_cast<std::size_t>(g.dims[0]) * g.dims[1] * g.dims[2];
+    g.cell_start.assign(ncells + 1, 0);
+    g.cell_of.resize(n);
+    g.sorted.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::array<int, 3> c{0, 0, 0};
+      for (int k = 0; k < D; ++k) c[k] = g.coord(P.pos[i], k);
+      g.cell_of[i] = g.cell_index(c);
+      ++g.cell_start[g.cell_of[i] + 1];
+    }
+    for (std::size_t c = 0; c < ncells; ++c) g.cell_start[c + 1] += g.cell_start[c];
+    {
+      static thread_local std::vector<std::uint32_t> fill;
+      fill.assign(g.cell_start.begin(), g.cell_start.end() - 1);
+      for (std::size_t i = 0; i < n; ++i) g.sorted[fill[g.cell_of[i]]++] = static_cast<std::uint32_t>(i);
+    }
+
+    const int zr = D == 3 ? 1 : 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec xi = P.pos[i];
+      const double ri = P.radius[i] + L.skin;
+      std::array<int, 3> c{0, 0, 0};
+      for (int k = 0; k < D; ++k) c[k] = g.coord(xi, k);
+      const std::size_t row_begin = L.other.size();
+      for (int dz = -zr; dz <= zr; ++dz) {
+        const int cz = c[2] + dz;
+        if (cz < 0 || cz >= g.dims[2]) continue;
+        for (int dy = -1; dy <= 1; ++dy) {
+          const int cy = c[1] + dy;
+          if (cy < 0 || cy >= g.dims[1]) continue;
+          const int cx0 = std::max(c[0] - 1, 0), cx1 = std::min(c[0] + 1, g.dims[0] - 1);
+          // Cells cx0..cx1 of one row are contiguous in the sorted array.
+          const std::uint32_t b = g.cell_start[g.cell_index({cx0, cy, cz})];
+          const std::uint32_t e = g.cell_start[g.cell_index({cx1, cy, cz}) + 1];
+          for (std::uint32_t s = b; s < e; ++s) {
+            const std::uint32_t j = g.sorted[s];
+            if (j <= i) continue;
+            const double reach = ri + P.radius[j];
+            if ((P.pos[j] - xi).squaredNorm() < reach * reach) L.other.push_back(j);
+          }
+        }
+      }
+      std::sort(L.other.begin() + static_cast<std::ptrdiff_t>(row_begin), L.other.end());
+      L.start[i + 1] = static_cast<std::uint32_t>(L.other.size());
+
+      // Walls: few, so every grain checks each (documented in docs/architecture.md).
+      for (std::size_t w = 0; w < world.walls.size(); ++w) {
+        Vec q;
+        wall_closest(world.walls[w], xi, q, /*apply_owner_rule=*/false);
+        const auto& wall = world.walls[w];
+        const double gap = wall.kind == WallKind::kPlane ? (xi - wall.point).dot(wall.normal)
+                                                         : (q - xi).norm();
+        if (gap < ri) L.wall.push_back(static_cast<std::uint32_t>(w));
+      }
+      L.wall_start[i + 1] = static_cast<std::uint32_t>(L.wall.size());
+    }
+  }
+
+  L.spring.resize(L.other.size());
+  L.wall_spring.resize(L.wall.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t nb = L.start[i], nn = L.start[i + 1] - nb;
+    const std::size_t wb = L.wall_start[i], wn = L.wall_start[i + 1] - wb;
+    if (have_old) {
+      const std::size_t ob = old.start[i], on = old.start[i + 1] - ob;
+      merge_history(old.other.data() + ob, old.spring.data() + ob, on, L.other.data() + nb,
+                    L.spring.data() + nb, nn);
+      const std::size_t owb = old.wall_start[i], own = old.wall_start[i + 1] - owb;
+      merge_history(old.wall.data() + owb, old.wall_spring.data() + owb, own, L.wall.data() + wb,
+                    L.wall_spring.data() + wb, wn);
+    } else {
+      for (std::size_t k = 0; k < nn; ++k) L.spring[nb + k] = Vec::Zero();
+      for (std::size_t k = 0; k < wn; ++k) L.wall_spring[wb + k] = Vec::Zero();
+    }
+  }
+
+  for (std::size_t i = 0; i < n; ++i) P.pos_at_build[i] = P.pos[i];
+  for (auto& w : world.walls) w.displacement = Vec::Zero();
+  world.max_disp2 = 0.0;
+  world.rebuild_needed = false;
+  ++L.builds;
+}
+
+template void build_neighbour_list<2>(World<2>&);
+template void build_neighbour_list<3>(World<3>&);
+template double skin_length<2>(const World<2>&);
+template double skin_length<3>(const World<3>&);
+
+}  // namespace geodem

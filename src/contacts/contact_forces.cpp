@@ -1,0 +1,141 @@
+#include "contacts/contact_forces.hpp"
+
+#include "contacts/contact_law.hpp"
+
+namespace geodem {
+
+namespace {
+
+template <int D, bool Measure>
+void grain_pairs(World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  using Rot = typename Dim<D>::Rot;
+  auto& P = world.particles;
+  auto& L = world.nlist;
+  const std::size_t n = P.size();
+  const double dt = world.dt;
+  const std::size_t nmat = world.materials.size();
+  auto& st = world.stats;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t b = L.start[i], e = L.start[i + 1];
+    if (b == e) continue;
+    const Vec xi = P.pos[i];
+    const Vec vi = P.vel[i];
+    const Rot wi = P.angvel[i];
+    const double ri = P.radius[i], imi = P.inv_mass[i];
+    const PairLaw* laws = world.pair_laws.data() + P.material[i] * nmat;
+    Vec fi = Vec::Zero();
+    Rot ti = Dim<D>::zero_rot();
+    for (std::uint32_t k = b; k < e; ++k) {
+      const std::uint32_t j = L.other[k];
+      const Vec d = P.pos[j] - xi;
+      const double rj = P.radius[j];
+      const double rs = ri + rj;
+      const double dist2 = d.squaredNorm();
+      if (dist2 >= rs * rs) {
+        L.spring[k] = Vec::Zero();
+        continue;
+      }
+      const double dist = std::sqrt(dist2);
+      const Vec nrm = d / dist;
+      const double delta = rs - dist;
+      const double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;  // centre-to-contact lengths
+      // Surface velocities at the contact point.
+      const Vec vrel = (P.vel[j] - Dim<D>::cross(P.angvel[j], aj * nrm)) -
+                       (vi + Dim<D>::cross(wi, ai * nrm));
+      double fn;
+      const Vec f = contact_force<D>(laws[P.material[j]], ri, rj, imi + P.inv_mass[j], nrm,
+                                     delta, vrel, dt, L.spring[k], fn);
+      P.force[j] += f;
+      fi -= f;
+      // Torques: lever arms +ai n (grain i) and -aj n (grain j); only the tangential part acts.
+      const Rot tq = Dim<D>::cross(nrm, L.spring[k]);
+      ti -= ai * tq;
+      P.torque[j] -= aj * tq;
+      if constexpr (Measure) {
+        st.fabric_stress += d * f.transpose();
+        st.sum_force += f.norm();
+        ++st.contacts;
+        if (fn > 0.0 && laws[P.material[j]].law == LawKind::kLinear)
+          st.elastic_energy += 0.5 * fn * fn / laws[P.material[j]].linear_kn(ri, rj);
+      }
+    }
+    P.force[i] += fi;
+    P.torque[i] += ti;
+  }
+}
+
+template <int D, bool Measure>
+void grain_walls(World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  auto& P = world.particles;
+  auto& L = world.nlist;
+  const std::size_t n = P.size();
+  const double dt = world.dt;
+  auto& st = world.stats;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t b = L.wall_start[i], e = L.wall_start[i + 1];
+    for (std::uint32_t k = b; k < e; ++k) {
+      auto& wall = world.walls[L.wall[k]];
+      const Vec xi = P.pos[i];
+      const double ri = P.radius[i];
+      Vec q;
+      double gap;
+      Vec nrm;  // from the grain to the wall
+      if (wall.kind == WallKind::kPlane) {
+        gap = (xi - wall.point).dot(wall.normal);
+        nrm = -wall.normal;
+      } else {
+        if (!wall_closest(wall, xi, q)) {
+          L.wall_spring[k] = Vec::Zero();
+          continue;
+        }
+        const Vec d = q - xi;
+        gap = d.norm();
+        if (gap <= 0.0) continue;  // centre exactly on the segment: no defined normal
+        nrm = d / gap;
+      }
+      const double delta = ri - gap;
+      if (delta <= 0.0) {
+        L.wall_spring[k] = Vec::Zero();
+        continue;
+      }
+      const double a = ri - 0.5 * delta;
+      const Vec vrel = wall.velocity - (P.vel[i] + Dim<D>::cross(P.angvel[i], a * nrm));
+      const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
+      double fn;
+      const Vec f = contact_force<D>(law, ri, ri, P.inv_mass[i], nrm, delta, vrel, dt,
+                                     L.wall_spring[k], fn);
+      P.force[i] -= f;
+      P.torque[i] -= a * Dim<D>::cross(nrm, L.wall_spring[k]);
+      wall.force += f;
+      if constexpr (Measure) {
+        st.fabric_stress += (a * nrm) * f.transpose();
+        st.sum_force += f.norm();
+        ++st.wall_contacts;
+        if (fn > 0.0 && law.law == LawKind::kLinear)
+          st.elastic_energy += 0.5 * fn * fn / law.linear_kn(ri, ri);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+template <int D>
+void compute_contact_forces(World<D>& world) {
+  for (auto& w : world.walls) w.force = Dim<D>::Vec::Zero();
+  if (world.measure_this_step) {
+    world.stats = ContactStats<D>{};
+    grain_pairs<D, true>(world);
+    grain_walls<D, true>(world);
+  } else {
+    grain_pairs<D, false>(world);
+    grain_walls<D, false>(world);
+  }
+}
+
+template void compute_contact_forces<2>(World<2>&);
+template void compute_contact_forces<3>(World<3>&);
+
+}  // namespace geodem

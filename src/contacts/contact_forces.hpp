@@ -1,0 +1,13 @@
+// The contact force stage: every listed grain-grain and grain-wall pair.
+#pragma once
+
+#include "core/world.hpp"
+
+namespace geodem {
+
+// Adds contact forces and torques to the grains and sums wall forces. When
+// world.measure_this_step is set, also fills world.stats (stress, force sums).
+template <int D>
+void compute_contact_forces(World<D>& world);
+
+}  // namespace geodem

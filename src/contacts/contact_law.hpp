@@ -1,0 +1,66 @@
+// Contact laws as plain inline functions over one contact: no virtual calls.
+// Conventions: n is the unit normal from body 1 to body 2, delta > 0 the overlap,
+// vrel the velocity of body 2's surface minus body 1's at the contact point.
+// The returned vector is the force exerted by body 1 on body 2 (repulsive along +n);
+// body 1 receives its opposite. `spring` holds the tangential force history.
+#pragma once
+
+#include <cmath>
+
+#include "core/dim.hpp"
+#include "materials/material.hpp"
+
+namespace geodem {
+
+struct NormalResult {
+  double fn;       // normal force magnitude (positive: repulsive)
+  double kt;       // tangential stiffness to use this step
+};
+
+// Normal force of the pair's law; also returns the tangential stiffness.
+// inv_msum = 1/m1 + 1/m2 (m* = 1/inv_msum); r1, r2 radii (r2 = r1 for walls).
+inline NormalResult normal_force(const PairLaw& p, double r1, double r2, double inv_msum,
+                                 double delta, double vn) {
+  if (p.law == LawKind::kLinear) {
+    const double kn = p.linear_kn(r1, r2);
+    double fn = kn * delta;
+    if (p.beta > 0.0 && inv_msum > 0.0) fn -= 2.0 * p.beta * std::sqrt(kn / inv_msum) * vn;
+    return {fn, p.linear_kt(kn)};
+  }
+  // Hertz-Mindlin (no slip): Fn = 4/3 E* sqrt(R*) delta^1.5, kt = 8 G* sqrt(R* delta).
+  const double rstar = r1 * r2 / (r1 + r2);
+  const double a = std::sqrt(rstar * delta);  // contact radius
+  double fn = 4.0 / 3.0 * p.estar * a * delta;
+  if (p.hertz_damp > 0.0 && inv_msum > 0.0)
+    fn -= p.hertz_damp * std::sqrt(2.0 * p.estar * a / inv_msum) * vn;
+  return {fn, 8.0 * p.gstar * a};
+}
+
+// Updates the tangential spring (incremental, rotated with the contact plane) and
+// applies Coulomb's limit; returns the total force on body 2.
+template <int D>
+inline typename Dim<D>::Vec contact_force(const PairLaw& p, double r1, double r2,
+                                          double inv_msum, const typename Dim<D>::Vec& n,
+                                          double delta, const typename Dim<D>::Vec& vrel,
+                                          double dt, typename Dim<D>::Vec& spring,
+                                          double& fn_out) {
+  using Vec = typename Dim<D>::Vec;
+  const double vn = vrel.dot(n);
+  const NormalResult nr = normal_force(p, r1, r2, inv_msum, delta, vn);
+  // Keep the spring in the current tangent plane, with its magnitude.
+  const double s2 = spring.squaredNorm();
+  if (s2 > 0.0) {
+    spring -= spring.dot(n) * n;
+    const double t2 = spring.squaredNorm();
+    if (t2 > 0.0) spring *= std::sqrt(s2 / t2);
+  }
+  const Vec vt = vrel - vn * n;
+  spring -= (nr.kt * dt) * vt;
+  const double limit = p.mu * std::max(nr.fn, 0.0);
+  const double ft2 = spring.squaredNorm();
+  if (ft2 > limit * limit) spring *= limit / std::sqrt(ft2);
+  fn_out = nr.fn;
+  return nr.fn * n + spring;
+}
+
+}  // namespace geodem

@@ -1,0 +1,38 @@
+// Verlet neighbour list with skin, in compressed rows, carrying the contact
+// history (tangential spring) of every listed pair. Each pair appears once, in the
+// row of its lower index. Grain-wall pairs have rows of their own.
+// History is exact across rebuilds: a pair in contact is always listed (the list
+// is rebuilt before any grain can move half the skin), and the rebuild merges the
+// old rows into the new ones pair by pair.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/dim.hpp"
+
+namespace geodem {
+
+template <int D>
+struct NeighbourList {
+  using Vec = typename Dim<D>::Vec;
+  // Grain-grain pairs: row i is [start[i], start[i+1]) in `other` and `spring`.
+  std::vector<std::uint32_t> start;
+  std::vector<std::uint32_t> other;
+  std::vector<Vec> spring;
+  // Grain-wall pairs, same layout.
+  std::vector<std::uint32_t> wall_start;
+  std::vector<std::uint32_t> wall;
+  std::vector<Vec> wall_spring;
+
+  double skin = 0.0;              // extra distance listed beyond touching (m)
+  std::uint64_t builds = 0;
+
+  std::size_t pair_count() const { return other.size(); }
+  std::size_t bytes() const {
+    return start.capacity() * 4 + other.capacity() * 4 + spring.capacity() * sizeof(Vec) +
+           wall_start.capacity() * 4 + wall.capacity() * 4 + wall_spring.capacity() * sizeof(Vec);
+  }
+};
+
+}  // namespace geodem

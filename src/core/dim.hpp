@@ -1,0 +1,58 @@
+// Dimension traits: one code path for 2D discs and 3D spheres.
+// In 2D a grain has 3 degrees of freedom (x, y, rotation angle); in 3D it has 6
+// (position, orientation quaternion). `Rot` is the type of angular quantities:
+// a scalar about the out-of-plane axis in 2D, a vector in 3D.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+
+namespace geodem {
+
+template <int D>
+struct Dim;
+
+template <>
+struct Dim<2> {
+  using Vec = Eigen::Vector2d;
+  using Rot = double;        // angular velocity, torque about z
+  using Orient = double;     // rotation angle (rad)
+  using Tensor = Eigen::Matrix2d;
+  static constexpr int rot_dofs = 1;
+  // Per metre of out-of-plane thickness.
+  static double volume(double r) { return std::numbers::pi * r * r; }
+  static double inertia_factor() { return 0.5; }  // I = 1/2 m r^2 (disc)
+  static Rot zero_rot() { return 0.0; }
+  static Orient identity() { return 0.0; }
+  static Vec cross(Rot w, const Vec& r) { return Vec(-w * r.y(), w * r.x()); }
+  static Rot cross(const Vec& a, const Vec& b) { return a.x() * b.y() - a.y() * b.x(); }
+  static double rot_norm2(Rot w) { return w * w; }
+  static void rotate(Orient& q, Rot w, double dt) { q += w * dt; }
+};
+
+template <>
+struct Dim<3> {
+  using Vec = Eigen::Vector3d;
+  using Rot = Eigen::Vector3d;
+  using Orient = Eigen::Quaterniond;
+  using Tensor = Eigen::Matrix3d;
+  static constexpr int rot_dofs = 3;
+  static double volume(double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r; }
+  static double inertia_factor() { return 0.4; }  // I = 2/5 m r^2 (sphere)
+  static Rot zero_rot() { return Rot::Zero(); }
+  static Orient identity() { return Orient::Identity(); }
+  // Rot and Vec are the same type in 3D: one cross product serves both uses.
+  static Vec cross(const Vec& a, const Vec& b) { return a.cross(b); }
+  static double rot_norm2(const Rot& w) { return w.squaredNorm(); }
+  // Exact rotation by the angle |w| dt about w (world frame), then renormalised.
+  static void rotate(Orient& q, const Rot& w, double dt) {
+    const double angle = w.norm() * dt;
+    if (angle <= 0.0) return;
+    q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, w / w.norm())) * q;
+    q.normalize();
+  }
+};
+
+}  // namespace geodem

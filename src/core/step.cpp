@@ -1,0 +1,116 @@
+// The time step as a fixed pipeline of named, timed stages:
+//
+//   1. neighbour search   rebuild the Verlet list when a grain or wall moved half the skin
+//   2. contact forces     grain-grain and grain-wall laws; wall reactions; measurements
+//   3. controllers        servo walls, radius growth, ... (once each)
+//   4. integration        leapfrog with local damping; walls move; time advances
+//   5. recorders          history rows, snapshots (outside the engine, by callback)
+//
+// Each stage lives in its concept's folder; this file only orders and times them.
+#include "core/step.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "broadphase/neighbour_search.hpp"
+#include "contacts/contact_forces.hpp"
+#include "core/error.hpp"
+#include "integrate/critical_timestep.hpp"
+#include "integrate/integrator.hpp"
+
+namespace geodem {
+
+namespace {
+
+// Adds the wall time of a scope to one stage's total.
+template <int D>
+class ScopedStage {
+ public:
+  ScopedStage(World<D>& w, Stage s) : world_(w), stage_(s) {}
+  ~ScopedStage() {
+    world_.stage_seconds[static_cast<int>(stage_)] +=
+        std::chrono::duration<double>(Clock::now() - t0_).count();
+  }
+  ScopedStage(const ScopedStage&) = delete;
+  ScopedStage& operator=(const ScopedStage&) = delete;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  World<D>& world_;
+  Stage stage_;
+  Clock::time_point t0_ = Clock::now();
+};
+
+template <int D>
+bool list_expired(const World<D>& world) {
+  double wall_disp = 0.0;
+  for (const auto& w : world.walls) wall_disp = std::max(wall_disp, w.displacement.norm());
+  const double d = std::sqrt(world.max_disp2);
+  return 2.0 * d > world.nlist.skin || d + wall_disp > world.nlist.skin;
+}
+
+}  // namespace
+
+template <int D>
+void update_timestep(World<D>& world) {
+  if (!world.auto_dt) return;
+  const double dt = critical_timestep(world);
+  if (std::isfinite(dt) && dt > 0.0) world.dt = dt;
+}
+
+template <int D>
+void check_finite(const World<D>& world) {
+  const auto& P = world.particles;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const bool ok = P.pos[i].allFinite() && P.vel[i].allFinite() &&
+                    std::isfinite(Dim<D>::rot_norm2(P.angvel[i]));
+    if (!ok)
+      throw InstabilityError(
+          "non-finite state at step " + std::to_string(world.step) + " (t = " +
+          std::to_string(world.time) + " s) on grain " + std::to_string(P.id[i]) +
+          "; likely cause: time step too large for the contact stiffness (dt = " +
+          std::to_string(world.dt) + " s): use time.step = \"auto\" or lower it, or lower the stiffness");
+  }
+}
+
+template <int D>
+void step(World<D>& world) {
+  if (world.dt <= 0.0 || (world.auto_dt && world.step % world.dt_update_interval == 0)) {
+    update_timestep(world);
+  }
+  {
+    ScopedStage<D> t(world, Stage::kNeighbours);
+    if (world.rebuild_needed || list_expired(world)) build_neighbour_list(world);
+  }
+  {
+    ScopedStage<D> t(world, Stage::kContactForces);
+    auto& P = world.particles;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      P.force[i].setZero();
+      P.torque[i] = Dim<D>::zero_rot();
+    }
+    compute_contact_forces(world);
+  }
+  {
+    ScopedStage<D> t(world, Stage::kControllers);
+    for (auto& c : world.controllers) c->apply(world);
+  }
+  {
+    ScopedStage<D> t(world, Stage::kIntegration);
+    integrate(world);
+    move_walls(world);
+    world.time += world.dt;
+    ++world.step;
+    if (world.step % 1000 == 0) check_finite(world);
+  }
+}
+
+template void step<2>(World<2>&);
+template void step<3>(World<3>&);
+template void update_timestep<2>(World<2>&);
+template void update_timestep<3>(World<3>&);
+template void check_finite<2>(const World<2>&);
+template void check_finite<3>(const World<3>&);
+
+}  // namespace geodem

@@ -1,0 +1,20 @@
+// The time step: the one place that says what happens, in which order.
+#pragma once
+
+#include "core/world.hpp"
+
+namespace geodem {
+
+// Advances the world by one time step (see step.cpp for the pipeline).
+template <int D>
+void step(World<D>& world);
+
+// Sets world.dt from the critical time step when it is automatic.
+template <int D>
+void update_timestep(World<D>& world);
+
+// Throws InstabilityError naming the first grain with a non-finite state.
+template <int D>
+void check_finite(const World<D>& world);
+
+}  // namespace geodem

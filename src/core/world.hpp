@@ -1,0 +1,107 @@
+// The whole simulated state: grains, walls, materials, contacts, time.
+// The time step (core/step.cpp) advances it; the engine never reads files.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contacts/neighbour_list.hpp"
+#include "core/dim.hpp"
+#include "materials/material.hpp"
+#include "particles/particles.hpp"
+#include "walls/walls.hpp"
+
+namespace geodem {
+
+// Boundary controllers (servo walls, strain control, radius growth...) act once per
+// step after the contact forces, before integration.
+template <int D>
+struct World;
+template <int D>
+class Controller {
+ public:
+  virtual ~Controller() = default;
+  virtual void apply(World<D>& world) = 0;
+};
+
+enum class Stage : int {
+  kNeighbours,
+  kContactForces,
+  kControllers,
+  kIntegration,
+  kRecorders,
+  kCount
+};
+inline const char* stage_name(Stage s) {
+  static const char* names[] = {"neighbour search", "contact forces", "controllers",
+                                "integration", "recorders"};
+  return names[static_cast<int>(s)];
+}
+
+// What the contact force stage measured on a step where measuring was asked.
+template <int D>
+struct ContactStats {
+  typename Dim<D>::Tensor fabric_stress = Dim<D>::Tensor::Zero();  // sum of l (x) f
+  double sum_force = 0.0;       // sum of |f| over grain-grain and grain-wall contacts
+  std::size_t contacts = 0;     // grain-grain contacts
+  std::size_t wall_contacts = 0;
+  double elastic_energy = 0.0;  // normal springs only (exact for frictionless linear law)
+};
+
+template <int D>
+struct World {
+  using Vec = typename Dim<D>::Vec;
+
+  Particles<D> particles;
+  std::vector<Wall<D>> walls;
+  std::vector<Material> materials;
+  std::vector<PairLaw> pair_laws;  // materials x materials
+  std::vector<PairLaw> wall_laws;  // materials x walls
+  NeighbourList<D> nlist;
+
+  Vec gravity = Vec::Zero();
+  double local_damping = 0.0;      // Cundall's non-viscous damping coefficient alpha
+  double dt = 0.0;
+  bool auto_dt = false;
+  double dt_safety = 0.8;
+  int dt_update_interval = 50;
+  double skin_factor = 0.4;        // skin as a fraction of the mean radius
+
+  double time = 0.0;
+  std::uint64_t step = 0;
+  bool rebuild_needed = true;
+  double max_disp2 = 0.0;          // largest squared displacement since the last build
+
+  bool measure_this_step = false;
+  ContactStats<D> stats;
+  std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};
+
+  std::vector<std::unique_ptr<Controller<D>>> controllers;
+
+  const PairLaw& pair_law(std::uint16_t a, std::uint16_t b) const {
+    return pair_laws[a * materials.size() + b];
+  }
+  const PairLaw& wall_law(std::uint16_t mat, std::size_t w) const {
+    return wall_laws[mat * walls.size() + w];
+  }
+
+  // Resolves the pair tables; call after materials and walls are set. Explicit
+  // pair laws can be put in the tables afterwards.
+  void resolve_pair_laws() {
+    const std::size_t nm = materials.size();
+    pair_laws.resize(nm * nm);
+    for (std::size_t a = 0; a < nm; ++a)
+      for (std::size_t b = 0; b < nm; ++b) pair_laws[a * nm + b] = combine(materials[a], materials[b]);
+    wall_laws.resize(nm * walls.size());
+    for (std::size_t a = 0; a < nm; ++a)
+      for (std::size_t w = 0; w < walls.size(); ++w)
+        wall_laws[a * walls.size() + w] = combine(materials[a], materials[walls[w].material]);
+    rebuild_needed = true;
+  }
+};
+
+}  // namespace geodem

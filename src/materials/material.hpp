@@ -1,0 +1,70 @@
+// Materials and the contact law of each material pair.
+// A material names its contact law and parameters; the pair table resolves, once
+// at set-up, the parameters of every (material, material) and (material, wall)
+// pair so the force loop only reads a small flat table: no virtual call per contact.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace geodem {
+
+enum class LawKind : std::uint8_t {
+  kLinear,  // kn, kt constant or from a contact modulus; Coulomb friction
+  kHertz,   // Hertz normal, Mindlin no-slip tangential; Coulomb friction
+};
+
+struct Material {
+  std::string name;
+  double density = 2600.0;
+  LawKind law = LawKind::kLinear;
+  // Linear law: either constant stiffnesses (kn > 0) or a contact modulus (young).
+  double kn = 0.0;          // N/m (3D), N/m per m (2D)
+  double kt = -1.0;         // < 0: kt_over_kn * kn
+  double young = 0.0;       // Pa; linear: kn = 2 E r1 r2/(r1+r2); Hertz: Young's modulus
+  double kt_over_kn = 0.5;  // linear law with modulus
+  double poisson = 0.25;    // Hertz-Mindlin
+  double friction = 0.5;    // Coulomb coefficient (tan of the friction angle)
+  double restitution = 1.0; // normal coefficient of restitution (1: no viscous damping)
+};
+
+// Damping ratio of a linear spring-dashpot that gives restitution e:
+// beta = -ln e / sqrt(ln^2 e + pi^2), so c = 2 beta sqrt(m* kn).
+inline double damping_ratio(double e) {
+  if (e >= 1.0) return 0.0;
+  const double l = std::log(e);
+  return -l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
+}
+
+// Resolved parameters of one pair; the force kernels read only this.
+struct PairLaw {
+  LawKind law = LawKind::kLinear;
+  bool constant_stiffness = false;
+  double kn = 0.0, kt = 0.0;          // constant stiffness
+  double e1r = 0.0, e2r = 0.0;        // contact moduli of the two sides (modulus form)
+  double kt_over_kn = 0.5;
+  double estar = 0.0, gstar = 0.0;    // Hertz-Mindlin effective moduli
+  double mu = 0.0;                    // Coulomb coefficient
+  double beta = 0.0;                  // viscous damping ratio from the restitution
+  double hertz_damp = 0.0;            // 2 sqrt(5/6) * beta_hertz (LIGGGHTS/Tsuji form)
+
+  // Normal stiffness of the linear law for grain radii r1, r2.
+  double linear_kn(double r1, double r2) const {
+    if (constant_stiffness) return kn;
+    const double a = e1r * r1, b = e2r * r2;
+    return 2.0 * a * b / (a + b);
+  }
+  double linear_kt(double kn_value) const {
+    return constant_stiffness ? kt : kt_over_kn * kn_value;
+  }
+};
+
+// Combines two materials (the second may be a wall's) into pair parameters.
+// Mixing rules (yade's FrictMat convention): friction = min, restitution = min,
+// contact modulus in series; Hertz: 1/E* = sum (1-nu^2)/E, 1/G* = sum 2(2-nu)(1+nu)/E.
+PairLaw combine(const Material& a, const Material& b);
+
+}  // namespace geodem

@@ -1,0 +1,175 @@
+#include "measure/measurements.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace geodem {
+
+template <int D>
+double kinetic_energy(const World<D>& world) {
+  const auto& P = world.particles;
+  double e = 0.0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    if (P.inv_mass[i] == 0.0) continue;
+    e += 0.5 * P.vel[i].squaredNorm() / P.inv_mass[i] +
+         0.5 * Dim<D>::rot_norm2(P.angvel[i]) / P.inv_inertia[i];
+  }
+  return e;
+}
+
+template <int D>
+double gravity_energy(const World<D>& world) {
+  const auto& P = world.particles;
+  double e = 0.0;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (P.inv_mass[i] > 0.0) e -= P.pos[i].dot(world.gravity) / P.inv_mass[i];
+  return e;
+}
+
+template <int D>
+double unbalanced_force_ratio(const World<D>& world) {
+  const auto& P = world.particles;
+  const std::size_t nc = world.stats.contacts + world.stats.wall_contacts;
+  if (nc == 0 || world.stats.sum_force <= 0.0) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0.0;
+  std::size_t nfree = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    if (P.inv_mass[i] == 0.0) continue;
+    sum += (P.force[i] + world.gravity / P.inv_mass[i]).norm();
+    ++nfree;
+  }
+  if (nfree == 0) return 0.0;
+  return (sum / static_cast<double>(nfree)) / (world.stats.sum_force / static_cast<double>(nc));
+}
+
+template <int D>
+typename Dim<D>::Tensor average_stress(const World<D>& world, double volume) {
+  const auto& s = world.stats.fabric_stress;
+  return 0.5 * (s + s.transpose()) / volume;
+}
+
+template <int D>
+double coordination_number(const World<D>& world) {
+  const std::size_t n = world.particles.size();
+  return n ? 2.0 * static_cast<double>(world.stats.contacts) / static_cast<double>(n) : 0.0;
+}
+
+namespace {
+
+// Integral of sqrt(r^2 - t^2) dt from 0 to t (|t| <= r).
+double half_chord_integral(double t, double r) {
+  t = std::clamp(t, -r, r);
+  return 0.5 * (t * std::sqrt(std::max(r * r - t * t, 0.0)) + r * r * std::asin(t / r));
+}
+
+// Area of the disc of radius r at the origin inside {X < x, Y < y}.
+double quadrant_area(double x, double y, double r) {
+  if (y <= -r || x <= -r) return 0.0;
+  const double xc = std::min(x, r);
+  auto H = [r](double t) { return half_chord_integral(t, r); };
+  if (y >= r) return 2.0 * (H(xc) - H(-r));
+  const double s = std::sqrt(r * r - y * y);  // |t| <= s: the chord crosses Y = y
+  double area = 0.0;
+  // t in [-r, -s] and [s, r]: chord entirely below y (y > 0) or above it (y < 0).
+  if (y > 0.0) {
+    area += 2.0 * (H(std::min(xc, -s)) - H(-r));
+    if (xc > s) area += 2.0 * (H(xc) - H(s));
+  }
+  // t in [-s, s]: length y + h(t).
+  if (xc > -s) {
+    const double hi = std::min(xc, s);
+    area += y * (hi + s) + (H(hi) - H(-s));
+  }
+  return area;
+}
+
+// 16-point Gauss-Legendre nodes and weights on [-1, 1].
+constexpr std::array<double, 8> kGaussX = {0.0950125098376374, 0.2816035507792589,
+                                           0.4580167776572274, 0.6178762444026438,
+                                           0.7554044083550030, 0.8656312023878318,
+                                           0.9445750230732326, 0.9894009349916499};
+constexpr std::array<double, 8> kGaussW = {0.1894506104550685, 0.1826034150449236,
+                                           0.1691565193950025, 0.1495959888165767,
+                                           0.1246289712555339, 0.0951585116824928,
+                                           0.0622535239386479, 0.0271524594117541};
+
+}  // namespace
+
+double disc_rectangle_area(double cx, double cy, double r, double x0, double y0, double x1,
+                           double y1) {
+  if (x1 <= x0 || y1 <= y0) return 0.0;
+  x0 -= cx, x1 -= cx, y0 -= cy, y1 -= cy;
+  return quadrant_area(x1, y1, r) - quadrant_area(x0, y1, r) - quadrant_area(x1, y0, r) +
+         quadrant_area(x0, y0, r);
+}
+
+template <int D>
+double solid_volume_in_box(const World<D>& world, const Box<D>& box) {
+  const auto& P = world.particles;
+  double v = 0.0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const auto& x = P.pos[i];
+    const double r = P.radius[i];
+    bool inside = true, outside = false;
+    for (int k = 0; k < D; ++k) {
+      if (x[k] - r < box.lo[k] || x[k] + r > box.hi[k]) inside = false;
+      if (x[k] + r <= box.lo[k] || x[k] - r >= box.hi[k]) outside = true;
+    }
+    if (outside) continue;
+    if (inside) {
+      v += Dim<D>::volume(r);
+      continue;
+    }
+    if constexpr (D == 2) {
+      v += disc_rectangle_area(x[0], x[1], r, box.lo[0], box.lo[1], box.hi[0], box.hi[1]);
+    } else {
+      // Slices along z: substitution z = cz + r sin(theta) removes the end singularity;
+      // the slice areas have kinks where a slice starts touching a face, so the range is
+      // split at those heights and each piece integrated with 16 Gauss points.
+      const double za = std::max(box.lo[2], x[2] - r), zb = std::min(box.hi[2], x[2] + r);
+      const double ta = std::asin(std::clamp((za - x[2]) / r, -1.0, 1.0));
+      const double tb = std::asin(std::clamp((zb - x[2]) / r, -1.0, 1.0));
+      std::array<double, 12> cuts{ta, tb};  // ends + at most 8 kinks
+      int nc = 2;
+      for (int k = 0; k < 2; ++k)
+        for (double face : {box.lo[k], box.hi[k]}) {
+          const double dist = std::abs(face - x[k]);
+          if (dist >= r) continue;
+          const double rho_t = std::acos(dist / r);  // |theta| where the slice radius = dist
+          for (double t : {-rho_t, rho_t})
+            if (t > ta && t < tb) cuts[nc++] = t;
+        }
+      for (int a = 1; a < nc; ++a)  // insertion sort of at most 10 values
+        for (int b = a; b > 0 && cuts[b - 1] > cuts[b]; --b) std::swap(cuts[b - 1], cuts[b]);
+      for (int c = 0; c + 1 < nc; ++c) {
+        const double a = cuts[c], b = cuts[c + 1], half = 0.5 * (b - a), mid = 0.5 * (a + b);
+        for (int g = 0; g < 8; ++g)
+          for (double sgn : {-1.0, 1.0}) {
+            const double t = mid + sgn * half * kGaussX[g];
+            const double rho = r * std::cos(t);
+            v += kGaussW[g] * half * r * std::cos(t) *
+                 disc_rectangle_area(x[0], x[1], rho, box.lo[0], box.lo[1], box.hi[0], box.hi[1]);
+          }
+      }
+    }
+  }
+  return v;
+}
+
+template double kinetic_energy<2>(const World<2>&);
+template double kinetic_energy<3>(const World<3>&);
+template double gravity_energy<2>(const World<2>&);
+template double gravity_energy<3>(const World<3>&);
+template double unbalanced_force_ratio<2>(const World<2>&);
+template double unbalanced_force_ratio<3>(const World<3>&);
+template Dim<2>::Tensor average_stress<2>(const World<2>&, double);
+template Dim<3>::Tensor average_stress<3>(const World<3>&, double);
+template double coordination_number<2>(const World<2>&);
+template double coordination_number<3>(const World<3>&);
+template double solid_volume_in_box<2>(const World<2>&, const Box<2>&);
+template double solid_volume_in_box<3>(const World<3>&, const Box<3>&);
+
+}  // namespace geodem

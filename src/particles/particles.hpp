@@ -1,0 +1,70 @@
+// Grains stored as a structure of arrays: each property is one contiguous array,
+// so the hot loops stream only what they read. No per-grain heap objects.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/dim.hpp"
+
+namespace geodem {
+
+enum ParticleFlags : std::uint8_t {
+  kFixed = 1u << 0,  // not integrated: keeps its prescribed velocity
+};
+
+template <int D>
+struct Particles {
+  using Vec = typename Dim<D>::Vec;
+  using Rot = typename Dim<D>::Rot;
+  using Orient = typename Dim<D>::Orient;
+
+  // Hot state, read or written every step.
+  std::vector<Vec> pos;
+  std::vector<Vec> vel;  // at the half step t - dt/2 between integrations
+  std::vector<Rot> angvel;
+  std::vector<Vec> force;  // resultant of contact forces this step (gravity added at integration)
+  std::vector<Rot> torque;
+  std::vector<double> radius;
+  std::vector<double> inv_mass;
+  std::vector<double> inv_inertia;
+  std::vector<std::uint16_t> material;
+  std::vector<std::uint8_t> flags;
+  // Warm state: needed by the neighbour list and the outputs.
+  std::vector<Vec> pos_at_build;  // position when the neighbour list was last built
+  std::vector<Orient> orient;
+  std::vector<std::uint32_t> id;  // stable user-facing identifier
+
+  std::size_t size() const { return pos.size(); }
+
+  void reserve(std::size_t n) {
+    pos.reserve(n), vel.reserve(n), angvel.reserve(n), force.reserve(n), torque.reserve(n);
+    radius.reserve(n), inv_mass.reserve(n), inv_inertia.reserve(n), material.reserve(n);
+    flags.reserve(n), pos_at_build.reserve(n), orient.reserve(n), id.reserve(n);
+  }
+
+  // Adds a grain of the given density; returns its index.
+  std::size_t add(const Vec& x, double r, double density, std::uint16_t mat,
+                  const Vec& v = Vec::Zero(), Rot w = Dim<D>::zero_rot(), bool fixed = false) {
+    const double m = density * Dim<D>::volume(r);
+    pos.push_back(x);
+    vel.push_back(v);
+    angvel.push_back(w);
+    force.push_back(Vec::Zero());
+    torque.push_back(Dim<D>::zero_rot());
+    radius.push_back(r);
+    // A fixed grain behaves as infinitely heavy in contacts (like a wall).
+    inv_mass.push_back(fixed ? 0.0 : 1.0 / m);
+    inv_inertia.push_back(fixed ? 0.0 : 1.0 / (Dim<D>::inertia_factor() * m * r * r));
+    material.push_back(mat);
+    flags.push_back(fixed ? kFixed : 0);
+    pos_at_build.push_back(x);
+    orient.push_back(Dim<D>::identity());
+    id.push_back(static_cast<std::uint32_t>(id.size()));
+    return pos.size() - 1;
+  }
+
+  bool fixed(std::size_t i) const { return flags[i] & kFixed; }
+};
+
+}  // namespace geodem

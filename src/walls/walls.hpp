@@ -1,0 +1,61 @@
+// Rigid boundaries: infinite planes (any orientation, one-sided) and, in 2D,
+// segments (two-sided, chained into polylines). Walls move with a prescribed
+// velocity or under a controller; the force the grains exert on each wall is
+// summed every step.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/dim.hpp"
+
+namespace geodem {
+
+enum class WallKind : std::uint8_t { kPlane, kSegment };
+
+template <int D>
+struct Wall {
+  using Vec = typename Dim<D>::Vec;
+  std::string name;
+  WallKind kind = WallKind::kPlane;
+  Vec point = Vec::Zero();   // plane: a point on it; segment: first end
+  Vec normal = Vec::Zero();  // plane: unit normal pointing into the grains' side
+  Vec end = Vec::Zero();     // segment: second end
+  Vec velocity = Vec::Zero();
+  std::uint16_t material = 0;
+  // Segments of one polyline share vertices; a grain touching a shared vertex
+  // is counted by one segment only (the one that starts there).
+  bool owns_end_vertex = true;
+  double area = 0.0;         // for the stress on the wall (m^2 in 3D, m in 2D); 0: unknown
+
+  // Results of the current step.
+  Vec force = Vec::Zero();   // force exerted by the grains on the wall
+  Vec displacement = Vec::Zero();  // since the neighbour list was built
+
+  double normal_stress() const { return area > 0.0 ? -force.dot(normal) / area : 0.0; }
+};
+
+// Closest point of a wall to x, with the gap (distance from x to the wall,
+// signed for planes). Returns false when the segment's vertex-owner rule excludes
+// it (only when `apply_owner_rule`: the force loop applies it, the list does not).
+template <int D>
+inline bool wall_closest(const Wall<D>& w, const typename Dim<D>::Vec& x,
+                         typename Dim<D>::Vec& closest, bool apply_owner_rule = true) {
+  if (w.kind == WallKind::kPlane) {
+    closest = x - (x - w.point).dot(w.normal) * w.normal;
+    return true;
+  }
+  const typename Dim<D>::Vec seg = w.end - w.point;
+  const double len2 = seg.squaredNorm();
+  double t = len2 > 0.0 ? (x - w.point).dot(seg) / len2 : 0.0;
+  if (t >= 1.0) {
+    if (apply_owner_rule && !w.owns_end_vertex) return false;
+    t = 1.0;
+  }
+  if (t < 0.0) t = 0.0;
+  closest = w.point + t * seg;
+  return true;
+}
+
+}  // namespace geodem
