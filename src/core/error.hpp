@@ -2,6 +2,7 @@
 // InputError -> 2, InstabilityError -> 3, anything else -> 1.
 #pragma once
 
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -22,10 +23,12 @@ class InputError : public std::runtime_error {
  private:
   static std::string format(const std::string& file, int line, const std::string& key,
                             const std::string& what) {
-    std::string s = file.empty() ? std::string("input") : file;
-    if (line > 0) s += ":" + std::to_string(line);
-    if (!key.empty()) s += ": key '" + key + "'";
-    return s + ": " + what;
+    std::ostringstream s;  // (not operator+: GCC 12 warns falsely on it at -O3)
+    s << (file.empty() ? std::string("input") : file);
+    if (line > 0) s << ':' << line;
+    if (!key.empty()) s << ": key '" << key << "'";
+    s << ": " << what;
+    return s.str();
   }
   std::string file_;
   int line_;

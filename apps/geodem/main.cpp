@@ -1,0 +1,115 @@
+// geodem command line: run, check, plot (docs/cli.md).
+// Exit codes: 0 success, 2 bad input, 3 unstable simulation, 1 anything else.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "io/run_output.hpp"
+#include "io/toml_reader.hpp"
+#include "scene/build_scene.hpp"
+#include "scene/run_scene.hpp"
+
+namespace {
+
+constexpr int kOk = 0, kFailure = 1, kBadInput = 2, kUnstable = 3;
+
+struct Loaded {
+  toml::table root;
+  std::string kind;
+};
+
+Loaded load(const std::string& file, const std::vector<std::string>& overrides) {
+  Loaded l{geodem::parse_toml_file(file), ""};
+  for (const auto& o : overrides) geodem::apply_override(l.root, o, file);
+  const toml::node* kind = l.root.get("kind");
+  if (!kind) throw geodem::InputError(file, 1, "kind", "missing; expected kind = \"scene\"");
+  if (!kind->is_string())
+    throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind", "expected a string");
+  l.kind = *kind->value<std::string>();
+  if (l.kind != "scene")
+    throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
+                             "unknown or unavailable kind \"" + l.kind + "\"; this version runs: \"scene\"");
+  return l;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"geodem: discrete element method for geotechnical engineering"};
+  app.set_version_flag("--version", std::string("geodem ") + geodem::version());
+  app.require_subcommand(1);
+
+  std::string scenario, out_dir = "out", plot_dir;
+  std::vector<std::string> overrides;
+  int threads = 1;
+  bool quiet = false;
+
+  auto* run = app.add_subcommand("run", "run a scenario");
+  run->add_option("scenario", scenario, "scenario file (TOML)")->required();
+  run->add_option("--out", out_dir, "output folder")->capture_default_str();
+  run->add_option("--set", overrides, "override a scenario key: --set sample.count=2000");
+  run->add_option("--threads", threads, "worker threads")->check(CLI::Range(1, 1024));
+  run->add_flag("--quiet", quiet, "no progress display");
+
+  auto* check = app.add_subcommand("check", "validate a scenario without running it");
+  check->add_option("scenario", scenario, "scenario file (TOML)")->required();
+  check->add_option("--set", overrides, "override a scenario key");
+
+  auto* plot = app.add_subcommand("plot", "(re)make the PNG plots of a finished run");
+  plot->add_option("dir", plot_dir, "output folder of a run")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? kOk : kBadInput;
+  }
+
+  try {
+    if (*plot) {
+      if (!std::filesystem::exists(plot_dir + "/summary.json")) {
+        std::fprintf(stderr, "error: %s/summary.json not found: not a finished run's folder\n", plot_dir.c_str());
+        return kBadInput;
+      }
+      return geodem::make_plots(plot_dir, false) ? kOk : kFailure;
+    }
+    Loaded l = load(scenario, overrides);
+    const geodem::SceneSettings s = geodem::read_scene(l.root, scenario);
+    if (*check) {
+      // Build the scene too: random clouds that cannot be placed are input errors.
+      if (s.dimension == 2) {
+        geodem::World<2> w;
+        geodem::build_world(s, w);
+      } else {
+        geodem::World<3> w;
+        geodem::build_world(s, w);
+      }
+      std::printf("%s: ok (kind = \"%s\", dimension %d)\n", scenario.c_str(), l.kind.c_str(), s.dimension);
+      return kOk;
+    }
+    geodem::RunOptions opt;
+    opt.out_dir = out_dir;
+    opt.quiet = quiet;
+    opt.threads = threads;
+    const auto summary = geodem::run_scene(s, opt);
+    if (s.output.plots) geodem::make_plots(out_dir, quiet);
+    if (!quiet)
+      std::fprintf(stderr, "done: %s steps, %.3g s simulated; outputs in %s\n",
+                   summary["results"]["steps"].dump().c_str(), summary["results"]["time"].get<double>(),
+                   out_dir.c_str());
+    return kOk;
+  } catch (const geodem::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kBadInput;
+  } catch (const geodem::InstabilityError& e) {
+    std::fprintf(stderr, "unstable: %s\nthe outputs written so far are in %s\n", e.what(), out_dir.c_str());
+    return kUnstable;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kFailure;
+  }
+}

@@ -1,0 +1,32 @@
+// Output files: written so that a crash never leaves one half-written.
+// Whole files (JSON, VTK, .pvd) go to a temporary name and are renamed into place;
+// the history CSV is appended line by line and flushed after each row.
+#pragma once
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace geodem {
+
+// Writes `content` to `path` atomically (temporary file + rename).
+void write_file_atomic(const std::string& path, const std::string& content);
+
+// history.csv: header row first, one row per recorded step.
+class HistoryCsv {
+ public:
+  HistoryCsv() = default;
+  void open(const std::string& path, const std::vector<std::string>& columns);
+  void row(const std::vector<double>& values);
+  bool is_open() const { return out_.is_open(); }
+  std::size_t rows() const { return rows_; }
+
+ private:
+  std::ofstream out_;
+  std::size_t columns_ = 0, rows_ = 0;
+};
+
+// Formats a double the same way everywhere (shortest round-trip form).
+std::string format_number(double v);
+
+}  // namespace geodem

@@ -1,0 +1,97 @@
+#include "io/run_output.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "io/output_files.hpp"
+
+#ifndef GEODEM_PYTHON_DIR
+#define GEODEM_PYTHON_DIR "python"
+#endif
+#ifndef GEODEM_VERSION
+#define GEODEM_VERSION "0.0.0"
+#endif
+
+namespace geodem {
+
+const char* version() { return GEODEM_VERSION; }
+
+void prepare_output_dir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir + "/vtk", ec);
+  if (ec) throw std::runtime_error("cannot create output folder " + dir + ": " + ec.message());
+}
+
+void write_summary(const std::string& dir, const nlohmann::json& summary) {
+  write_file_atomic(dir + "/summary.json", summary.dump(2) + "\n");
+}
+
+template <int D>
+nlohmann::json timing_json(const World<D>& world, double wall_s, std::uint64_t steps, int threads) {
+  nlohmann::json t;
+  t["wall_s"] = wall_s;
+  t["steps"] = steps;
+  t["particles"] = world.particles.size();
+  t["particle_steps_per_s"] =
+      wall_s > 0.0 ? static_cast<double>(steps) * static_cast<double>(world.particles.size()) / wall_s : 0.0;
+  t["threads"] = threads;
+  nlohmann::json stages = nlohmann::json::object();
+  for (int s = 0; s < static_cast<int>(Stage::kCount); ++s)
+    stages[stage_name(static_cast<Stage>(s))] = world.stage_seconds[s];
+  t["stages_s"] = stages;
+  t["neighbour_list_builds"] = world.nlist.builds;
+  return t;
+}
+
+template <int D>
+void VtkSeries<D>::write(const World<D>& world) {
+  char name[64];
+  std::snprintf(name, sizeof name, "particles_%06d.vtu", count_);
+  write_particles_vtu(dir_ + "/vtk/" + name, world);
+  pvd_.add(world.time, name, 0);
+  if (!world.walls.empty()) {
+    std::snprintf(name, sizeof name, "walls_%06d.vtp", count_);
+    // Draw planes a little larger than the grains' extent.
+    double half = 0.0;
+    const auto& P = world.particles;
+    if (!P.pos.empty()) {
+      auto lo = P.pos[0], hi = P.pos[0];
+      for (const auto& x : P.pos) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+      half = 0.6 * (hi - lo).maxCoeff() + 2.0 * P.radius[0];
+    }
+    write_walls_vtp(dir_ + "/vtk/" + name, world, half);
+    pvd_.add(world.time, name, 1);
+  }
+  pvd_.write();
+  ++count_;
+}
+
+bool make_plots(const std::string& dir, bool quiet) {
+  const char* env = std::getenv("GEODEM_PYTHON");
+  std::string python = env ? env : (std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
+  std::string script = std::string(GEODEM_PYTHON_DIR) + "/geodem_plot.py";
+  if (!std::filesystem::exists(script)) {
+    if (!quiet) std::fprintf(stderr, "warning: plotting script %s not found; no PNG plots\n", script.c_str());
+    return false;
+  }
+  const std::string cmd = "\"" + python + "\" \"" + script + "\" \"" + dir + "\"";
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0) {
+    if (!quiet)
+      std::fprintf(stderr,
+                   "warning: plotting failed (is python3-matplotlib installed?); the CSV, JSON "
+                   "and VTK outputs are complete; run 'geodem plot %s' later\n",
+                   dir.c_str());
+    return false;
+  }
+  return true;
+}
+
+template class VtkSeries<2>;
+template class VtkSeries<3>;
+template nlohmann::json timing_json<2>(const World<2>&, double, std::uint64_t, int);
+template nlohmann::json timing_json<3>(const World<3>&, double, std::uint64_t, int);
+
+}  // namespace geodem

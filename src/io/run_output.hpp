@@ -1,0 +1,50 @@
+// The pieces every scenario kind shares: the output folder, summary.json, VTK
+// series with their .pvd index, and the PNG plots made by python/geodem_plot.py.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/world.hpp"
+#include "io/vtk_writer.hpp"
+
+namespace geodem {
+
+struct RunOptions {
+  std::string out_dir = "out";
+  bool quiet = false;
+  int threads = 1;
+};
+
+// Creates DIR and DIR/vtk (exit code 1 on failure).
+void prepare_output_dir(const std::string& dir);
+
+// summary.json: {"kind", "geodem_version", "status", "scenario", "results", "timing"}.
+void write_summary(const std::string& dir, const nlohmann::json& summary);
+
+// Timing block of summary.json from a world's counters.
+template <int D>
+nlohmann::json timing_json(const World<D>& world, double wall_s, std::uint64_t steps, int threads);
+
+// Snapshots of grains and walls, indexed in vtk/particles.pvd.
+template <int D>
+class VtkSeries {
+ public:
+  explicit VtkSeries(const std::string& dir) : dir_(dir), pvd_(dir + "/vtk/particles.pvd") {}
+  void write(const World<D>& world);
+  int count() const { return count_; }
+
+ private:
+  std::string dir_;
+  PvdIndex pvd_;
+  int count_ = 0;
+};
+
+// Runs the plotting script on a finished run's folder; returns false (with a
+// warning on stderr) when Python or matplotlib is missing.
+bool make_plots(const std::string& dir, bool quiet);
+
+// The version string.
+const char* version();
+
+}  // namespace geodem

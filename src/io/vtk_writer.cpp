@@ -1,0 +1,171 @@
+#include "io/vtk_writer.hpp"
+
+#include <cstdint>
+#include <cstring>
+#include <sstream>
+
+#include "io/output_files.hpp"
+
+namespace geodem {
+
+namespace {
+
+// Collects arrays for the appended-data section and their XML headers.
+class AppendedData {
+ public:
+  void add(const std::string& name, const std::string& type, int components,
+           const void* data, std::size_t bytes) {
+    xml_ << "<DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
+         << components << "\" format=\"appended\" offset=\"" << blob_.size() << "\"/>\n";
+    const std::uint64_t n = bytes;
+    append(&n, sizeof n);
+    append(data, bytes);
+  }
+  std::string take_xml() {
+    std::string s = xml_.str();
+    xml_.str("");
+    return s;
+  }
+  const std::string& blob() const { return blob_; }
+
+ private:
+  void append(const void* p, std::size_t n) { blob_.append(static_cast<const char*>(p), n); }
+  std::ostringstream xml_;
+  std::string blob_;
+};
+
+template <int D, typename V>
+std::vector<double> as3(const std::vector<V>& v) {
+  std::vector<double> out(3 * v.size(), 0.0);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (int k = 0; k < D; ++k) out[3 * i + k] = v[i][k];
+  return out;
+}
+
+std::string finish(const std::string& type, const std::string& body, const AppendedData& data) {
+  std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"" + type +
+                  "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n" +
+                  body + "<AppendedData encoding=\"raw\">\n_";
+  s += data.blob();
+  s += "\n</AppendedData>\n</VTKFile>\n";
+  return s;
+}
+
+}  // namespace
+
+template <int D>
+void write_particles_vtu(const std::string& path, const World<D>& world) {
+  const auto& P = world.particles;
+  const std::size_t n = P.size();
+  AppendedData data;
+  std::ostringstream body;
+  body << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n
+       << "\">\n";
+  // Point data.
+  data.add("radius", "Float64", 1, P.radius.data(), n * sizeof(double));
+  const auto vel = as3<D>(P.vel);
+  data.add("velocity", "Float64", 3, vel.data(), vel.size() * sizeof(double));
+  std::vector<double> w(3 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if constexpr (D == 2)
+      w[3 * i + 2] = P.angvel[i];
+    else
+      for (int k = 0; k < 3; ++k) w[3 * i + k] = P.angvel[i][k];
+  }
+  data.add("angular_velocity", "Float64", 3, w.data(), w.size() * sizeof(double));
+  const auto f = as3<D>(P.force);
+  data.add("force", "Float64", 3, f.data(), f.size() * sizeof(double));
+  data.add("id", "UInt32", 1, P.id.data(), n * sizeof(std::uint32_t));
+  std::vector<std::uint8_t> mat(P.material.begin(), P.material.end());
+  data.add("material", "UInt8", 1, mat.data(), n);
+  body << "<PointData Scalars=\"radius\" Vectors=\"velocity\">\n" << data.take_xml() << "</PointData>\n";
+  const auto x = as3<D>(P.pos);
+  data.add("Points", "Float64", 3, x.data(), x.size() * sizeof(double));
+  body << "<Points>\n" << data.take_xml() << "</Points>\n";
+  std::vector<std::int64_t> conn(n), offs(n);
+  for (std::size_t i = 0; i < n; ++i) conn[i] = static_cast<std::int64_t>(i), offs[i] = static_cast<std::int64_t>(i + 1);
+  std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
+  data.add("connectivity", "Int64", 1, conn.data(), n * 8);
+  data.add("offsets", "Int64", 1, offs.data(), n * 8);
+  data.add("types", "UInt8", 1, types.data(), n);
+  body << "<Cells>\n" << data.take_xml() << "</Cells>\n</Piece>\n</UnstructuredGrid>\n";
+  write_file_atomic(path, finish("UnstructuredGrid", body.str(), data));
+}
+
+template <int D>
+void write_walls_vtp(const std::string& path, const World<D>& world, double half_size) {
+  using Vec = typename Dim<D>::Vec;
+  const auto& P = world.particles;
+  Vec centre = Vec::Zero();
+  for (const auto& x : P.pos) centre += x;
+  if (!P.pos.empty()) centre /= static_cast<double>(P.pos.size());
+  std::vector<double> pts;
+  std::vector<std::int64_t> conn, offs;
+  std::vector<double> force, stress;
+  auto point = [&](const Vec& p) {
+    for (int k = 0; k < 3; ++k) pts.push_back(k < D ? p[k] : 0.0);
+    conn.push_back(static_cast<std::int64_t>(pts.size() / 3 - 1));
+  };
+  for (const auto& w : world.walls) {
+    if (w.kind == WallKind::kSegment) {
+      point(w.point);
+      point(w.end);
+    } else {
+      const Vec c = centre - (centre - w.point).dot(w.normal) * w.normal;
+      if constexpr (D == 2) {
+        const Vec t(-w.normal.y(), w.normal.x());
+        point(c - half_size * t);
+        point(c + half_size * t);
+      } else {
+        Vec a = std::abs(w.normal.x()) < 0.9 ? Vec::UnitX() : Vec::UnitY();
+        const Vec t1 = (a - a.dot(w.normal) * w.normal).normalized();
+        const Vec t2 = w.normal.cross(t1);
+        point(c - half_size * t1 - half_size * t2);
+        point(c + half_size * t1 - half_size * t2);
+        point(c + half_size * t1 + half_size * t2);
+        point(c - half_size * t1 + half_size * t2);
+      }
+    }
+    offs.push_back(static_cast<std::int64_t>(conn.size()));
+    for (int k = 0; k < 3; ++k) force.push_back(k < D ? w.force[k] : 0.0);
+    stress.push_back(w.normal_stress());
+  }
+  const std::size_t nw = world.walls.size();
+  AppendedData data;
+  std::ostringstream body;
+  const bool lines = D == 2;
+  body << "<PolyData>\n<Piece NumberOfPoints=\"" << pts.size() / 3 << "\" NumberOfVerts=\"0\" "
+       << "NumberOfLines=\"" << (lines ? nw : 0) << "\" NumberOfStrips=\"0\" NumberOfPolys=\""
+       << (lines ? 0 : nw) << "\">\n";
+  data.add("force", "Float64", 3, force.data(), force.size() * sizeof(double));
+  data.add("normal_stress", "Float64", 1, stress.data(), stress.size() * sizeof(double));
+  body << "<CellData Vectors=\"force\">\n" << data.take_xml() << "</CellData>\n";
+  data.add("Points", "Float64", 3, pts.data(), pts.size() * sizeof(double));
+  body << "<Points>\n" << data.take_xml() << "</Points>\n";
+  data.add("connectivity", "Int64", 1, conn.data(), conn.size() * 8);
+  data.add("offsets", "Int64", 1, offs.data(), offs.size() * 8);
+  const char* tag = lines ? "Lines" : "Polys";
+  body << "<" << tag << ">\n" << data.take_xml() << "</" << tag << ">\n</Piece>\n</PolyData>\n";
+  write_file_atomic(path, finish("PolyData", body.str(), data));
+}
+
+void PvdIndex::add(double time, const std::string& file, int part) {
+  entries_.push_back({time, file, part});
+}
+
+void PvdIndex::write() const {
+  std::ostringstream s;
+  s << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  for (const auto& e : entries_)
+    s << "  <DataSet timestep=\"" << format_number(e.time) << "\" part=\"" << e.part
+      << "\" file=\"" << e.file << "\"/>\n";
+  s << "</Collection>\n</VTKFile>\n";
+  write_file_atomic(path_, s.str());
+}
+
+template void write_particles_vtu<2>(const std::string&, const World<2>&);
+template void write_particles_vtu<3>(const std::string&, const World<3>&);
+template void write_walls_vtp<2>(const std::string&, const World<2>&, double);
+template void write_walls_vtp<3>(const std::string&, const World<3>&, double);
+
+}  // namespace geodem

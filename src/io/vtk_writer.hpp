@@ -1,0 +1,38 @@
+// VTK XML output for ParaView: grains as .vtu point clouds (radius, velocity,
+// angular velocity, force, id), walls as .vtp polygons/lines, and a .pvd time index
+// that lists both. Binary data in raw appended form (compact and fast).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/world.hpp"
+
+namespace geodem {
+
+template <int D>
+void write_particles_vtu(const std::string& path, const World<D>& world);
+
+// Planes are drawn as squares (3D) or segments (2D) of the given half size, centred
+// on the grains' centroid projected onto the plane.
+template <int D>
+void write_walls_vtp(const std::string& path, const World<D>& world, double half_size);
+
+// The .pvd index: part 0 grains, part 1 walls.
+class PvdIndex {
+ public:
+  explicit PvdIndex(std::string path) : path_(std::move(path)) {}
+  void add(double time, const std::string& file, int part);
+  void write() const;
+
+ private:
+  struct Entry {
+    double time;
+    std::string file;
+    int part;
+  };
+  std::string path_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace geodem

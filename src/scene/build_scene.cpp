@@ -1,0 +1,126 @@
+#include "scene/build_scene.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "core/error.hpp"
+#include "core/random.hpp"
+#include "scene/random_cloud.hpp"
+
+namespace geodem {
+
+namespace {
+
+template <int D>
+typename Dim<D>::Vec to_vec(const List& v) {
+  typename Dim<D>::Vec x;
+  for (int k = 0; k < D; ++k) x[k] = v[static_cast<std::size_t>(k)];
+  return x;
+}
+
+std::uint16_t material_index(const std::vector<Material>& mats, const std::string& name) {
+  for (std::size_t i = 0; i < mats.size(); ++i)
+    if (mats[i].name == name) return static_cast<std::uint16_t>(i);
+  throw std::logic_error("unknown material " + name);  // names were checked when reading
+}
+
+}  // namespace
+
+template <int D>
+void build_world(const SceneSettings& s, World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  world.materials = s.materials;
+  world.gravity = to_vec<D>(s.gravity);
+  world.local_damping = s.local_damping;
+  world.skin_factor = s.skin;
+  world.auto_dt = s.time.step <= 0.0;
+  world.dt = s.time.step;
+  world.dt_safety = s.time.safety;
+  world.dt_update_interval = s.time.update_interval;
+
+  for (const auto& w : s.walls) {
+    auto add = [&](Wall<D> wall) {
+      wall.material = material_index(s.materials, w.material);
+      wall.velocity = to_vec<D>(w.velocity);
+      wall.area = w.area;
+      world.walls.push_back(wall);
+    };
+    Wall<D> wall;
+    wall.name = w.name;
+    if (w.type == "plane") {
+      wall.kind = WallKind::kPlane;
+      wall.point = to_vec<D>(w.point);
+      wall.normal = to_vec<D>(w.normal).normalized();
+      add(wall);
+    } else if (w.type == "segment") {
+      wall.kind = WallKind::kSegment;
+      wall.point = to_vec<D>(w.from);
+      wall.end = to_vec<D>(w.to);
+      add(wall);
+    } else {
+      // A polyline: segment k owns its start vertex; the open end's last vertex is
+      // owned by the last segment.
+      std::vector<List> pts = w.points;
+      if (w.closed) pts.push_back(pts.front());
+      for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+        Wall<D> seg;
+        seg.name = w.name + "_" + std::to_string(k);
+        seg.kind = WallKind::kSegment;
+        seg.point = to_vec<D>(pts[k]);
+        seg.end = to_vec<D>(pts[k + 1]);
+        seg.owns_end_vertex = !w.closed && k + 2 == pts.size();
+        add(seg);
+      }
+    }
+  }
+  world.resolve_pair_laws();
+  for (const auto& p : s.pairs) {
+    const auto a = material_index(s.materials, p.a), b = material_index(s.materials, p.b);
+    for (auto* law : {&world.pair_laws[a * s.materials.size() + b],
+                      &world.pair_laws[b * s.materials.size() + a]}) {
+      if (p.friction) law->mu = *p.friction;
+      if (p.restitution) law->beta = damping_ratio(*p.restitution);
+      if (p.restitution && law->law == LawKind::kHertz)
+        law->hertz_damp = 2.0 * std::sqrt(5.0 / 6.0) * law->beta;
+      if (p.kn) law->constant_stiffness = true, law->kn = *p.kn, law->kt = p.kt.value_or(0.5 * *p.kn);
+    }
+  }
+
+  std::vector<Sphere<D>> placed;
+  for (const auto& p : s.particles) {
+    const auto m = material_index(s.materials, p.material);
+    typename Dim<D>::Rot w;
+    if constexpr (D == 2)
+      w = p.angular_velocity[0];
+    else
+      w = Vec(p.angular_velocity[0], p.angular_velocity[1], p.angular_velocity[2]);
+    world.particles.add(to_vec<D>(p.position), p.radius, s.materials[m].density, m,
+                        to_vec<D>(p.velocity), w, p.fixed);
+    placed.push_back({to_vec<D>(p.position), p.radius});
+  }
+  Random rng(s.seed);
+  for (std::size_t c = 0; c < s.clouds.size(); ++c) {
+    const auto& cl = s.clouds[c];
+    const Vec lo = to_vec<D>(cl.lo), hi = to_vec<D>(cl.hi);
+    const double mean = cl.radius > 0.0 ? cl.radius
+                                        : mean_radius_for_porosity<D>((hi - lo).prod(), cl.count,
+                                                                      cl.porosity, cl.fuzz);
+    std::vector<Sphere<D>> grains;
+    try {
+      grains = random_cloud<D>(lo, hi, cl.count, mean, cl.fuzz, rng, placed);
+    } catch (const std::runtime_error& e) {
+      throw InputError(s.file, 0, "clouds." + std::to_string(c), e.what());
+    }
+    const auto m = material_index(s.materials, cl.material);
+    world.particles.reserve(world.particles.size() + grains.size());
+    for (const auto& g : grains) {
+      world.particles.add(g.centre, g.radius, s.materials[m].density, m, to_vec<D>(cl.velocity));
+      placed.push_back(g);
+    }
+  }
+}
+
+template void build_world<2>(const SceneSettings&, World<2>&);
+template void build_world<3>(const SceneSettings&, World<3>&);
+
+}  // namespace geodem

@@ -1,0 +1,161 @@
+#include "scene/run_scene.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+#include "core/step.hpp"
+#include "io/output_files.hpp"
+#include "io/progress.hpp"
+#include "measure/measurements.hpp"
+#include "scene/build_scene.hpp"
+
+namespace geodem {
+
+namespace {
+
+const char* axis(int k) { return k == 0 ? "x" : (k == 1 ? "y" : "z"); }
+
+template <int D>
+Box<D> grains_box(const World<D>& w) {
+  Box<D> b{w.particles.pos[0], w.particles.pos[0]};
+  for (std::size_t i = 0; i < w.particles.size(); ++i) {
+    using Vec = typename Dim<D>::Vec;
+    const Vec r = Vec::Constant(w.particles.radius[i]);
+    b.lo = b.lo.cwiseMin(w.particles.pos[i] - r);
+    b.hi = b.hi.cwiseMax(w.particles.pos[i] + r);
+  }
+  return b;
+}
+
+template <int D>
+nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
+  using Clock = std::chrono::steady_clock;
+  World<D> w;
+  build_world<D>(s, w);
+  prepare_output_dir(opt.out_dir);
+
+  std::optional<Box<D>> box;
+  if (s.output.measure_box) {
+    Box<D> b;
+    for (int k = 0; k < D; ++k) b.lo[k] = s.output.measure_box->first[k], b.hi[k] = s.output.measure_box->second[k];
+    box = b;
+  }
+
+  std::vector<std::string> cols = {"step", "time", "dt", "kinetic_energy", "unbalanced",
+                                   "coordination", "contacts", "wall_contacts"};
+  if (box) cols.push_back("porosity");
+  for (int a = 0; a < D; ++a)
+    for (int b = a; b < D; ++b) cols.push_back(std::string("stress_") + axis(a) + axis(b));
+  for (const auto& wall : w.walls) {
+    for (int k = 0; k < D; ++k) cols.push_back("wall_" + wall.name + "_f" + axis(k));
+    if (wall.area > 0.0) cols.push_back("wall_" + wall.name + "_stress");
+  }
+  HistoryCsv history;
+  history.open(opt.out_dir + "/history.csv", cols);
+  VtkSeries<D> vtk(opt.out_dir);
+
+  auto record = [&]() {
+    std::vector<double> row = {static_cast<double>(w.step), w.time, w.dt, kinetic_energy(w),
+                               unbalanced_force_ratio(w), coordination_number(w),
+                               static_cast<double>(w.stats.contacts),
+                               static_cast<double>(w.stats.wall_contacts)};
+    const Box<D> vb = box ? *box : grains_box(w);
+    if (box) row.push_back(porosity_in_box(w, *box));
+    const auto sigma = average_stress(w, vb.volume());
+    for (int a = 0; a < D; ++a)
+      for (int b = a; b < D; ++b) row.push_back(sigma(a, b));
+    for (const auto& wall : w.walls) {
+      for (int k = 0; k < D; ++k) row.push_back(wall.force[k]);
+      if (wall.area > 0.0) row.push_back(wall.normal_stress());
+    }
+    history.row(row);
+  };
+
+  Progress progress(opt.quiet);
+  const auto t0 = Clock::now();
+  std::string status = "completed", stop_reason = "end of duration";
+  std::string message;
+  update_timestep(w);
+  if (s.output.vtk) vtk.write(w);
+  const double duration = s.time.duration > 0.0 ? s.time.duration : std::numeric_limits<double>::infinity();
+  const std::uint64_t max_steps = s.time.steps > 0 ? s.time.steps : std::numeric_limits<std::uint64_t>::max();
+  double unbalanced = std::numeric_limits<double>::quiet_NaN();
+  try {
+    while (w.step < max_steps && w.time < duration * (1.0 - 1e-12)) {
+      const bool last = w.step + 1 >= max_steps || w.time + w.dt >= duration * (1.0 - 1e-12);
+      w.measure_this_step = last || w.step % s.output.history_every == 0;
+      step(w);
+      if (w.measure_this_step) {
+        record();
+        unbalanced = unbalanced_force_ratio(w);
+        const double fraction = std::max(w.time / duration, static_cast<double>(w.step) / static_cast<double>(max_steps));
+        progress.update("scene", w.step, w.time, std::min(fraction, 1.0),
+                        "unbalanced " + format_number(unbalanced));
+        if (w.time >= s.stop.min_time && (s.stop.unbalanced_below > 0.0 || s.stop.kinetic_below > 0.0)) {
+          const bool ub_ok = s.stop.unbalanced_below <= 0.0 || unbalanced < s.stop.unbalanced_below;
+          const bool ke_ok = s.stop.kinetic_below <= 0.0 || kinetic_energy(w) < s.stop.kinetic_below;
+          if (ub_ok && ke_ok) {
+            stop_reason = "at rest (stop criteria met)";
+            break;
+          }
+        }
+      }
+      if (s.output.vtk && s.output.vtk_every > 0 && w.step % s.output.vtk_every == 0) vtk.write(w);
+    }
+    check_finite(w);
+  } catch (const InstabilityError& e) {
+    status = "unstable";
+    message = e.what();
+  }
+  progress.finish();
+  const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (s.output.vtk && status == "completed" && (s.output.vtk_every == 0 || w.step % s.output.vtk_every != 0))
+    vtk.write(w);
+
+  nlohmann::json results;
+  results["status"] = status;
+  results["stop_reason"] = status == "completed" ? stop_reason : message;
+  results["time"] = w.time;
+  results["steps"] = w.step;
+  results["dt"] = w.dt;
+  results["particles"] = w.particles.size();
+  if (status == "completed") {
+    results["kinetic_energy"] = kinetic_energy(w);
+    results["unbalanced"] = std::isfinite(unbalanced) ? nlohmann::json(unbalanced) : nlohmann::json();
+    results["coordination"] = coordination_number(w);
+    if (box) results["porosity"] = porosity_in_box(w, *box);
+  }
+  double weight = 0.0;
+  for (std::size_t i = 0; i < w.particles.size(); ++i)
+    if (w.particles.inv_mass[i] > 0.0) weight += w.gravity.norm() / w.particles.inv_mass[i];
+  results["total_weight"] = weight;
+  nlohmann::json walls = nlohmann::json::object();
+  for (const auto& wall : w.walls) {
+    nlohmann::json f = nlohmann::json::array();
+    for (int k = 0; k < D; ++k) f.push_back(wall.force[k]);
+    walls[wall.name] = {{"force", f}, {"normal_force", -wall.force.dot(wall.normal)}};
+    if (wall.area > 0.0) walls[wall.name]["normal_stress"] = wall.normal_stress();
+  }
+  results["walls"] = walls;
+
+  nlohmann::json summary;
+  summary["kind"] = "scene";
+  summary["geodem_version"] = version();
+  summary["status"] = status;
+  summary["scenario"] = s.resolved;
+  summary["results"] = results;
+  summary["timing"] = timing_json(w, wall_s, w.step, opt.threads);
+  write_summary(opt.out_dir, summary);
+  if (status == "unstable") throw InstabilityError(message);
+  return summary;
+}
+
+}  // namespace
+
+nlohmann::json run_scene(const SceneSettings& settings, const RunOptions& options) {
+  return settings.dimension == 2 ? run<2>(settings, options) : run<3>(settings, options);
+}
+
+}  // namespace geodem

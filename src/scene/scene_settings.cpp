@@ -1,0 +1,213 @@
+#include "scene/scene_settings.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <set>
+
+namespace geodem {
+
+namespace {
+
+double friction_from(TableReader& t, double fallback) {
+  if (t.has("friction") && t.has("friction_deg"))
+    t.fail("friction_deg", "give either 'friction' (coefficient) or 'friction_deg', not both");
+  if (t.has("friction_deg"))
+    return std::tan(t.in_range("friction_deg", 0.0, 0.0, 89.9) * std::numbers::pi / 180.0);
+  return t.non_negative("friction", fallback);
+}
+
+}  // namespace
+
+Material read_material(TableReader& t, const std::string& fallback_name) {
+  Material m;
+  m.name = t.string("name", fallback_name);
+  m.density = t.positive("density", 2600.0);
+  const std::string law = t.choice("law", "linear", {"linear", "hertz"});
+  m.law = law == "hertz" ? LawKind::kHertz : LawKind::kLinear;
+  m.friction = friction_from(t, 0.5);
+  m.restitution = t.in_range("restitution", 1.0, 1e-6, 1.0);
+  if (m.law == LawKind::kLinear) {
+    if (t.has("kn") && t.has("young"))
+      t.fail("kn", "give either constant stiffness 'kn' or contact modulus 'young', not both");
+    if (t.has("kn")) {
+      m.kn = t.positive("kn", 0.0);
+      m.kt = t.has("kt") ? t.non_negative("kt", 0.0) : -1.0;
+      m.kt_over_kn = t.non_negative("kt_over_kn", 0.5);
+    } else {
+      m.young = t.positive("young", 1e7);
+      m.kt_over_kn = t.non_negative("kt_over_kn", 0.5);
+    }
+  } else {
+    m.young = t.positive("young", 1e7);
+    m.poisson = t.in_range("poisson", 0.25, -0.99, 0.499);
+  }
+  return m;
+}
+
+SceneSettings read_scene(const toml::table& root, const std::string& file) {
+  SceneSettings s;
+  s.file = file;
+  TableReader r(root, "", file, &s.resolved);
+  r.choice("kind", "scene", {"scene"});
+  s.dimension = static_cast<int>(r.integer("dimension", 3, 2, 3));
+  s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, (1LL << 62)));
+  r.string("title", "");
+  const std::size_t D = static_cast<std::size_t>(s.dimension);
+
+  if (auto t = r.table("time")) {
+    double step = 0.0;
+    if (auto word = t->number_or_string("step", step, "auto")) {
+      if (*word != "auto") t->fail("step", "expected a time step in seconds or \"auto\"");
+    } else if (!(step > 0.0)) {
+      t->fail("step", "expected a positive time step in seconds");
+    }
+    s.time.step = step;
+    s.time.safety = t->in_range("safety", 0.8, 1e-3, 1.0);
+    s.time.update_interval = static_cast<int>(t->integer("update_interval", 50, 1, 1000000));
+    s.time.duration = t->non_negative("duration", 0.0);
+    s.time.steps = static_cast<std::uint64_t>(t->integer("steps", 0, 0, (1LL << 50)));
+    if (s.time.duration == 0.0 && s.time.steps == 0)
+      t->fail("duration", "give the simulated time 'duration' (s) or a number of 'steps'");
+    t->finish();
+  } else {
+    r.fail("time", "missing [time] table (duration or steps)");
+  }
+  if (auto t = r.table("stop")) {
+    s.stop.unbalanced_below = t->non_negative("unbalanced_below", 0.0);
+    s.stop.kinetic_below = t->non_negative("kinetic_below", 0.0);
+    s.stop.min_time = t->non_negative("min_time", 0.0);
+    t->finish();
+  }
+  s.gravity = List(D, 0.0);
+  if (auto t = r.table("physics")) {
+    s.gravity = t->numbers("gravity", s.gravity, D);
+    if (s.gravity.size() != D) t->fail("gravity", "expected " + std::to_string(D) + " components");
+    s.local_damping = t->in_range("local_damping", 0.0, 0.0, 0.99);
+    t->finish();
+  }
+  if (auto t = r.table("neighbours")) {
+    s.skin = t->in_range("skin", 0.4, 0.01, 10.0);
+    t->finish();
+  }
+
+  std::set<std::string> names;
+  for (auto& t : r.tables("materials")) {
+    s.materials.push_back(read_material(t, "material" + std::to_string(s.materials.size())));
+    if (!names.insert(s.materials.back().name).second)
+      t.fail("name", "duplicate material name '" + s.materials.back().name + "'");
+    if (s.dimension == 2 && s.materials.back().law == LawKind::kHertz)
+      t.fail("law", "the Hertz-Mindlin law is for spheres; use \"linear\" in 2D");
+    t.finish();
+  }
+  if (s.materials.empty()) r.fail("materials", "missing: define at least one [[materials]]");
+  auto material_name = [&](TableReader& t, const std::string& key) {
+    const std::string m = t.string(key, s.materials.front().name);
+    if (!names.count(m)) t.fail(key, "unknown material '" + m + "'");
+    return m;
+  };
+
+  for (auto& t : r.tables("pairs")) {
+    PairSpec p;
+    const auto ab = t.strings("materials", 2);
+    for (const auto& m : ab)
+      if (!names.count(m)) t.fail("materials", "unknown material '" + m + "'");
+    p.a = ab[0], p.b = ab[1];
+    if (t.has("friction") || t.has("friction_deg")) p.friction = friction_from(t, 0.0);
+    if (t.has("restitution")) p.restitution = t.in_range("restitution", 1.0, 1e-6, 1.0);
+    if (t.has("kn")) p.kn = t.positive("kn", 1.0);
+    if (t.has("kt")) p.kt = t.non_negative("kt", 0.0);
+    s.pairs.push_back(p);
+    t.finish();
+  }
+
+  auto vec = [&](TableReader& t, const std::string& key, const List& fallback) {
+    List v = t.numbers(key, fallback, D);
+    if (v.size() != D)
+      t.fail(key, "expected " + std::to_string(D) + " components for dimension " + std::to_string(D));
+    return v;
+  };
+  const List zero(D, 0.0);
+  std::set<std::string> wall_names;
+  for (auto& t : r.tables("walls")) {
+    WallSpec w;
+    w.name = t.string("name", "wall" + std::to_string(s.walls.size()));
+    if (!wall_names.insert(w.name).second) t.fail("name", "duplicate wall name '" + w.name + "'");
+    w.type = t.choice("type", "plane", {"plane", "segment", "polyline"});
+    w.material = material_name(t, "material");
+    w.velocity = vec(t, "velocity", zero);
+    w.area = t.non_negative("area", 0.0);
+    if (w.type == "plane") {
+      w.point = vec(t, "point", zero);
+      w.normal = vec(t, "normal", zero);
+      double n2 = 0.0;
+      for (double x : w.normal) n2 += x * x;
+      if (n2 == 0.0) t.fail("normal", "expected a non-zero normal vector");
+    } else {
+      if (s.dimension != 2) t.fail("type", "segments and polylines are 2D boundaries");
+      if (w.type == "segment") {
+        w.from = vec(t, "from", zero);
+        w.to = vec(t, "to", zero);
+      } else {
+        w.points = t.number_rows("points", 2);
+        if (w.points.size() < 2) t.fail("points", "a polyline needs at least 2 points");
+        w.closed = t.boolean("closed", false);
+      }
+    }
+    s.walls.push_back(w);
+    t.finish();
+  }
+
+  for (auto& t : r.tables("particles")) {
+    ParticleSpec p;
+    p.position = vec(t, "position", zero);
+    if (!t.has("radius")) t.fail("radius", "missing; expected the grain radius (m)");
+    p.radius = t.positive("radius", 0.0);
+    p.velocity = vec(t, "velocity", zero);
+    p.angular_velocity = t.numbers("angular_velocity", List(D == 2 ? 1 : 3, 0.0), D == 2 ? 1 : 3);
+    if (p.angular_velocity.size() != (D == 2 ? 1u : 3u))
+      t.fail("angular_velocity", D == 2 ? "expected 1 value in 2D" : "expected 3 values in 3D");
+    p.material = material_name(t, "material");
+    p.fixed = t.boolean("fixed", false);
+    s.particles.push_back(p);
+    t.finish();
+  }
+
+  for (auto& t : r.tables("clouds")) {
+    CloudSpec c;
+    c.lo = vec(t, "min", zero);
+    c.hi = vec(t, "max", zero);
+    for (std::size_t k = 0; k < D; ++k)
+      if (!(c.hi[k] > c.lo[k])) t.fail("max", "each component must exceed the one of 'min'");
+    c.count = static_cast<std::size_t>(t.integer("count", 0, 1, 100000000));
+    if (t.has("radius") == t.has("porosity"))
+      t.fail("radius", "give either the mean 'radius' or the cloud 'porosity'");
+    if (t.has("radius")) c.radius = t.positive("radius", 0.0);
+    if (t.has("porosity")) c.porosity = t.in_range("porosity", 0.5, 0.3, 0.999);
+    c.fuzz = t.in_range("radius_fuzz", 0.0, 0.0, 0.95);
+    c.velocity = vec(t, "velocity", zero);
+    c.material = material_name(t, "material");
+    s.clouds.push_back(c);
+    t.finish();
+  }
+  if (s.particles.empty() && s.clouds.empty())
+    r.fail("particles", "the scene has no grains: add [[particles]] or [[clouds]]");
+
+  if (auto t = r.table("output")) {
+    s.output.history_every = static_cast<std::uint64_t>(t->integer("history_every", 1000, 1, (1LL << 50)));
+    s.output.vtk_every = static_cast<std::uint64_t>(t->integer("vtk_every", 0, 0, (1LL << 50)));
+    s.output.vtk = t->boolean("vtk", true);
+    s.output.plots = t->boolean("plots", true);
+    if (auto b = t->table("measure_box")) {
+      const List lo = vec(*b, "min", zero), hi = vec(*b, "max", zero);
+      for (std::size_t k = 0; k < D; ++k)
+        if (!(hi[k] > lo[k])) b->fail("max", "each component must exceed the one of 'min'");
+      s.output.measure_box = {lo, hi};
+      b->finish();
+    }
+    t->finish();
+  }
+  r.finish();
+  return s;
+}
+
+}  // namespace geodem

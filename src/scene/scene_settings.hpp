@@ -1,0 +1,94 @@
+// Settings of a `kind = "scene"` scenario, parsed once and immutable afterwards.
+// Vectors are kept as plain lists here; the builder checks and converts them to
+// the scenario's dimension.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/toml_reader.hpp"
+#include "materials/material.hpp"
+
+namespace geodem {
+
+using List = std::vector<double>;
+
+struct PairSpec {
+  std::string a, b;
+  std::optional<double> friction, restitution, kn, kt;
+};
+
+struct WallSpec {
+  std::string name, type, material;  // type: plane | segment | polyline
+  List point, normal, velocity, from, to;
+  std::vector<List> points;
+  bool closed = false;
+  double area = 0.0;
+};
+
+struct ParticleSpec {
+  List position, velocity, angular_velocity;
+  double radius = 0.0;
+  std::string material;
+  bool fixed = false;
+};
+
+struct CloudSpec {
+  List lo, hi, velocity;
+  std::size_t count = 0;
+  double radius = 0.0;     // mean radius; 0: from porosity
+  double porosity = 0.0;
+  double fuzz = 0.0;
+  std::string material;
+};
+
+struct TimeSpec {
+  double step = 0.0;  // 0: automatic
+  double safety = 0.8;
+  int update_interval = 50;
+  double duration = 0.0;
+  std::uint64_t steps = 0;
+};
+
+struct StopSpec {
+  double unbalanced_below = 0.0;  // 0: off
+  double kinetic_below = 0.0;     // J; 0: off
+  double min_time = 0.0;
+};
+
+struct OutputSpec {
+  std::uint64_t history_every = 1000;
+  std::uint64_t vtk_every = 0;  // 0: first and last state only
+  bool vtk = true;
+  bool plots = true;
+  std::optional<std::pair<List, List>> measure_box;
+};
+
+struct SceneSettings {
+  std::string file;
+  int dimension = 3;
+  std::uint64_t seed = 1;
+  TimeSpec time;
+  StopSpec stop;
+  List gravity;
+  double local_damping = 0.0;
+  double skin = 0.4;
+  std::vector<Material> materials;
+  std::vector<PairSpec> pairs;
+  std::vector<WallSpec> walls;
+  std::vector<ParticleSpec> particles;
+  std::vector<CloudSpec> clouds;
+  OutputSpec output;
+  nlohmann::json resolved;  // every setting with its value, defaults included
+};
+
+// Reads one [[materials]] entry (also used by the lab tests' [material] table).
+Material read_material(TableReader& t, const std::string& fallback_name);
+
+// Parses and checks a scene scenario from its root table.
+SceneSettings read_scene(const toml::table& root, const std::string& file);
+
+}  // namespace geodem
