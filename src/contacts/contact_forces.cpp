@@ -1,10 +1,20 @@
 #include "contacts/contact_forces.hpp"
 
+#include <algorithm>
+
 #include "contacts/contact_law.hpp"
 
 namespace geodem {
 
 namespace {
+
+template <int D>
+void note_overlap(World<D>& world, std::size_t i, std::int64_t partner, double ratio) {
+  if (world.overlap_offender >= 0) return;
+  world.overlap_offender = static_cast<std::int64_t>(i);
+  world.overlap_partner = partner;
+  world.overlap_ratio = ratio;
+}
 
 template <int D, bool Measure>
 void grain_pairs(World<D>& world) {
@@ -39,6 +49,8 @@ void grain_pairs(World<D>& world) {
       const double dist = std::sqrt(dist2);
       const Vec nrm = d / dist;
       const double delta = rs - dist;
+      if (delta > world.overlap_limit * std::min(ri, rj)) [[unlikely]]
+        note_overlap(world, i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
       const double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;  // centre-to-contact lengths
       // Surface velocities at the contact point.
       const Vec vrel = (P.vel[j] - Dim<D>::cross(P.angvel[j], aj * nrm)) -
@@ -100,12 +112,14 @@ void grain_walls(World<D>& world) {
         L.wall_spring[k] = Vec::Zero();
         continue;
       }
+      if (delta > world.overlap_limit * ri) [[unlikely]]
+        note_overlap(world, i, -1 - static_cast<std::int64_t>(L.wall[k]), delta / ri);
       const double a = ri - 0.5 * delta;
       const Vec vrel = wall.velocity - (P.vel[i] + Dim<D>::cross(P.angvel[i], a * nrm));
       const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
       double fn;
-      const Vec f = contact_force<D>(law, ri, ri, P.inv_mass[i], nrm, delta, vrel, dt,
-                                     L.wall_spring[k], fn);
+      const Vec f = contact_force<D>(law, ri, wall_partner_radius(law, ri), P.inv_mass[i], nrm,
+                                     delta, vrel, dt, L.wall_spring[k], fn);
       P.force[i] -= f;
       P.torque[i] -= a * Dim<D>::cross(nrm, L.wall_spring[k]);
       wall.force += f;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include "core/dim.hpp"
 #include "materials/material.hpp"
@@ -17,8 +18,15 @@ struct NormalResult {
   double kt;       // tangential stiffness to use this step
 };
 
+// Radius that stands for a flat wall in the pair law of a grain of radius r. The Hertz law
+// needs the wall's true (infinite) radius of curvature, so that R* = r; the linear law's
+// modulus form takes the wall as a grain of equal radius, kn = 2 E1 E2 r / (E1 + E2).
+inline double wall_partner_radius(const PairLaw& p, double r) {
+  return p.law == LawKind::kHertz ? std::numeric_limits<double>::infinity() : r;
+}
+
 // Normal force of the pair's law; also returns the tangential stiffness.
-// inv_msum = 1/m1 + 1/m2 (m* = 1/inv_msum); r1, r2 radii (r2 = r1 for walls).
+// inv_msum = 1/m1 + 1/m2 (m* = 1/inv_msum); r1, r2 radii (r2 = wall_partner_radius for walls).
 inline NormalResult normal_force(const PairLaw& p, double r1, double r2, double inv_msum,
                                  double delta, double vn) {
   if (p.law == LawKind::kLinear) {
@@ -28,7 +36,8 @@ inline NormalResult normal_force(const PairLaw& p, double r1, double r2, double 
     return {fn, p.linear_kt(kn)};
   }
   // Hertz-Mindlin (no slip): Fn = 4/3 E* sqrt(R*) delta^1.5, kt = 8 G* sqrt(R* delta).
-  const double rstar = r1 * r2 / (r1 + r2);
+  // A flat wall has r2 = infinity (see wall_partner_radius): R* = r1.
+  const double rstar = std::isinf(r2) ? r1 : r1 * r2 / (r1 + r2);
   const double a = std::sqrt(rstar * delta);  // contact radius
   double fn = 4.0 / 3.0 * p.estar * a * delta;
   if (p.hertz_damp > 0.0 && inv_msum > 0.0)

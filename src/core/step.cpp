@@ -75,6 +75,21 @@ void check_finite(const World<D>& world) {
 }
 
 template <int D>
+[[noreturn]] void throw_overlap(const World<D>& world) {
+  const auto& P = world.particles;
+  const std::int64_t j = world.overlap_partner;
+  const std::string partner =
+      j >= 0 ? "grain " + std::to_string(P.id[static_cast<std::size_t>(j)])
+             : "wall '" + world.walls[static_cast<std::size_t>(-1 - j)].name + "'";
+  throw InstabilityError(
+      "overlap of " + std::to_string(static_cast<int>(100.0 * world.overlap_ratio)) +
+      " % of the radius between grain " + std::to_string(P.id[static_cast<std::size_t>(world.overlap_offender)]) +
+      " and " + partner + " at step " + std::to_string(world.step) + " (t = " + std::to_string(world.time) +
+      " s); likely cause: time step too large (dt = " + std::to_string(world.dt) +
+      " s; try time.step = \"auto\") or contact stiffness too low for the load");
+}
+
+template <int D>
 void step(World<D>& world) {
   if (world.dt <= 0.0 || (world.auto_dt && world.step % world.dt_update_interval == 0)) {
     update_timestep(world);
@@ -91,6 +106,7 @@ void step(World<D>& world) {
       P.torque[i] = Dim<D>::zero_rot();
     }
     compute_contact_forces(world);
+    if (world.overlap_offender >= 0) throw_overlap(world);
   }
   {
     ScopedStage<D> t(world, Stage::kControllers);

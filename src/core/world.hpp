@@ -76,6 +76,12 @@ struct World {
   bool rebuild_needed = true;
   double max_disp2 = 0.0;          // largest squared displacement since the last build
 
+  // Instability watch: an overlap beyond this fraction of the smaller radius stops
+  // the run (the contact force stage notes the first offender).
+  double overlap_limit = 0.5;
+  std::int64_t overlap_offender = -1, overlap_partner = -1;  // partner < 0: a wall (-1 - index)
+  double overlap_ratio = 0.0;
+
   bool measure_this_step = false;
   ContactStats<D> stats;
   std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};

@@ -47,7 +47,8 @@ double critical_timestep(const World<D>& world) {
       const double delta = P.radius[i] - gap;
       if (delta <= 0.0) continue;
       const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
-      NormalResult nr = normal_force(law, P.radius[i], P.radius[i], 0.0, delta, 0.0);
+      NormalResult nr = normal_force(law, P.radius[i], wall_partner_radius(law, P.radius[i]),
+                                     0.0, delta, 0.0);
       const double kn =
           law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i]) : 1.5 * nr.fn / delta;
       add(i, kn, nr.kt, P.radius[i]);

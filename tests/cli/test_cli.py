@@ -1,0 +1,180 @@
+"""Command-line contract: exit codes, error messages, --set, output files.
+
+Run by CTest: python3 test_cli.py GEODEM_BINARY REPO_ROOT
+"""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+GEODEM = None
+ROOT = None
+
+SMALL_SCENE = """
+kind = "scene"
+dimension = {dim}
+[time]
+step = "auto"
+duration = 0.05
+[physics]
+gravity = {gravity}
+local_damping = 0.2
+[[materials]]
+name = "sand"
+young = 1e6
+friction = 0.5
+[[walls]]
+name = "floor"
+normal = {normal}
+area = 0.01
+[[clouds]]
+min = {lo}
+max = {hi}
+count = 50
+radius = 0.004
+[output]
+history_every = 50
+"""
+
+
+def scene(dim):
+    if dim == 3:
+        return SMALL_SCENE.format(dim=3, gravity="[0, 0, -9.81]", normal="[0, 0, 1]",
+                                  lo="[0, 0, 0]", hi="[0.1, 0.1, 0.1]")
+    return SMALL_SCENE.format(dim=2, gravity="[0, -9.81]", normal="[0, 1]",
+                              lo="[0, 0]", hi="[0.1, 0.1]")
+
+
+def run(*args):
+    return subprocess.run([GEODEM, *args], capture_output=True, text=True, timeout=300)
+
+
+class CliTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = Path(self.tmp.name)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def write(self, text, name="s.toml"):
+        p = self.dir / name
+        p.write_text(text)
+        return str(p)
+
+    def test_version_and_help(self):
+        r = run("--version")
+        self.assertEqual(r.returncode, 0)
+        self.assertIn("geodem", r.stdout)
+        self.assertEqual(run("--help").returncode, 0)
+
+    def test_check_examples(self):
+        for ex in sorted((ROOT / "examples").glob("*/scenario.toml")):
+            r = run("check", str(ex))
+            self.assertEqual(r.returncode, 0, f"{ex}: {r.stderr}")
+
+    def test_run_writes_contract_outputs(self):
+        for dim in (2, 3):
+            out = self.dir / f"out{dim}"
+            r = run("run", self.write(scene(dim)), "--out", str(out), "--quiet")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            summary = json.loads((out / "summary.json").read_text())
+            for key in ("kind", "geodem_version", "scenario", "results", "timing"):
+                self.assertIn(key, summary)
+            for key in ("wall_s", "steps", "particles", "particle_steps_per_s", "threads"):
+                self.assertIn(key, summary["timing"])
+            self.assertEqual(summary["timing"]["particles"], 50)
+            # Defaults are part of the resolved settings.
+            self.assertEqual(summary["scenario"]["materials"][0]["kt_over_kn"], 0.5)
+            with open(out / "history.csv") as f:
+                rows = list(csv.reader(f))
+            self.assertEqual(rows[0][:3], ["step", "time", "dt"])
+            self.assertGreater(len(rows), 2)
+            self.assertTrue(all(len(r) == len(rows[0]) for r in rows))
+            pvd = (out / "vtk" / "particles.pvd").read_text()
+            self.assertIn("particles_000000.vtu", pvd)
+            self.assertIn("walls_000000.vtp", pvd)
+            vtu = (out / "vtk" / "particles_000001.vtu").read_bytes()
+            for name in (b"radius", b"velocity", b"angular_velocity", b"force", b"id"):
+                self.assertIn(b'Name="' + name + b'"', vtu)
+            self.assertTrue((out / "energy.png").exists())
+            self.assertTrue((out / "wall_forces.png").exists())
+            self.assertFalse(list(out.glob("**/*.tmp")))
+
+    def test_set_overrides(self):
+        out = self.dir / "out"
+        r = run("run", self.write(scene(2)), "--out", str(out), "--quiet",
+                "--set", "time.duration=0.01", "--set", "clouds.0.count=20",
+                "--set", "materials.0.name=grit", "--set", "clouds.0.material=grit")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = json.loads((out / "summary.json").read_text())
+        self.assertEqual(s["scenario"]["time"]["duration"], 0.01)
+        self.assertEqual(s["results"]["particles"], 20)
+        self.assertEqual(s["scenario"]["materials"][0]["name"], "grit")
+
+    def assertBadInput(self, text, *fragments, args=()):
+        path = self.write(text)
+        r = run("check", path, *args)
+        self.assertEqual(r.returncode, 2, f"expected exit 2, got {r.returncode}: {r.stderr}")
+        for frag in fragments:
+            self.assertIn(frag, r.stderr)
+        return r
+
+    def test_unknown_key_suggests(self):
+        text = scene(3).replace("friction = 0.5", "frcition = 0.5")
+        self.assertBadInput(text, "s.toml:", "materials.0.frcition", "did you mean 'friction'")
+
+    def test_bad_values(self):
+        self.assertBadInput(scene(3).replace("young = 1e6", "young = -1e6"), "young",
+                            "positive")
+        self.assertBadInput(scene(3).replace("young = 1e6", 'young = "stiff"'), "young",
+                            "expected a number")
+        self.assertBadInput(scene(3).replace("dimension = 3", "dimension = 4"), "dimension")
+        self.assertBadInput(scene(3).replace("count = 50", "count = 500000"), "clouds.0",
+                            "too dense")
+        self.assertBadInput(scene(3).replace('kind = "scene"', 'kind = "bogus"'), "kind")
+        self.assertBadInput("kind = \"scene\"\n[time\n", "TOML syntax")
+        self.assertBadInput(scene(3), "time.duration", args=("--set", "time.duration=-1"))
+
+    def test_line_numbers(self):
+        text = scene(3).replace("count = 50", "count = 2.5")
+        line = text.splitlines().index("count = 2.5") + 1
+        self.assertBadInput(text, f"s.toml:{line}", "clouds.0.count", "integer")
+
+    def test_missing_and_binary_files(self):
+        r = run("check", str(self.dir / "nope.toml"))
+        self.assertEqual(r.returncode, 2)
+        (self.dir / "bin.toml").write_bytes(b"\x00\x01\x02kind")
+        r = run("check", str(self.dir / "bin.toml"))
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(run("run").returncode, 2)
+
+    def test_unstable_run_exits_3_and_keeps_outputs(self):
+        text = scene(3).replace('step = "auto"', "step = 0.05").replace("duration = 0.05",
+                                                                          "duration = 200.0")
+        out = self.dir / "out"
+        r = run("run", self.write(text), "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("time step", r.stderr)
+        s = json.loads((out / "summary.json").read_text())
+        self.assertEqual(s["status"], "unstable")
+        self.assertTrue((out / "history.csv").exists())
+
+    def test_plot_command(self):
+        out = self.dir / "out"
+        self.assertEqual(run("run", self.write(scene(2)), "--out", str(out), "--quiet").returncode, 0)
+        (out / "energy.png").unlink()
+        r = run("plot", str(out))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue((out / "energy.png").exists())
+        self.assertEqual(run("plot", str(self.dir / "nothing")).returncode, 2)
+
+
+if __name__ == "__main__":
+    GEODEM = os.path.abspath(sys.argv.pop(1))
+    ROOT = Path(sys.argv.pop(1))
+    unittest.main(verbosity=2)
