@@ -39,6 +39,64 @@ struct Grid {
   }
 };
 
+// Renumbers grains in the order `order` (new k = old order[k]) and rewrites the
+// old neighbour rows in the new numbering so their history merges as usual.
+template <int D>
+void renumber(World<D>& world, NeighbourList<D>& old, bool have_old,
+              const std::vector<std::uint32_t>& order) {
+  using Vec = typename Dim<D>::Vec;
+  const std::size_t n = order.size();
+  world.particles.permute(order);
+  if (!have_old) return;
+  static thread_local std::vector<std::uint32_t> inv, count;
+  inv.resize(n);
+  for (std::size_t k = 0; k < n; ++k) inv[order[k]] = static_cast<std::uint32_t>(k);
+  // Grain-grain rows: each pair goes to the row of its new lower index; the spring
+  // is the force on the higher-index grain, so it changes sign when the roles swap.
+  struct Entry {
+    std::uint32_t other;
+    Vec spring;
+  };
+  static thread_local std::vector<Entry> entries;
+  count.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k)
+      ++count[std::min(inv[i], inv[old.other[k]]) + 1];
+  for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
+  entries.resize(old.other.size());
+  std::vector<std::uint32_t> fill(count.begin(), count.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k) {
+      const std::uint32_t a = inv[i], b = inv[old.other[k]];
+      if (a < b)
+        entries[fill[a]++] = {b, old.spring[k]};
+      else
+        entries[fill[b]++] = {a, -old.spring[k]};
+    }
+  for (std::size_t i = 0; i < n; ++i)
+    std::sort(entries.begin() + count[i], entries.begin() + count[i + 1],
+              [](const Entry& x, const Entry& y) { return x.other < y.other; });
+  old.start.assign(count.begin(), count.end());
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    old.other[k] = entries[k].other;
+    old.spring[k] = entries[k].spring;
+  }
+  // Grain-wall rows keep their entries; only the rows move.
+  std::vector<std::uint32_t> wstart(n + 1, 0), wall(old.wall.size());
+  std::vector<Vec> wspring(old.wall.size());
+  for (std::size_t k = 0; k < n; ++k) wstart[k + 1] = wstart[k] + (old.wall_start[order[k] + 1] - old.wall_start[order[k]]);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t src = old.wall_start[order[k]], len = wstart[k + 1] - wstart[k];
+    for (std::uint32_t m = 0; m < len; ++m) {
+      wall[wstart[k] + m] = old.wall[src + m];
+      wspring[wstart[k] + m] = old.wall_spring[src + m];
+    }
+  }
+  old.wall_start.swap(wstart);
+  old.wall.swap(wall);
+  old.wall_spring.swap(wspring);
+}
+
 }  // namespace
 
 template <int D>
@@ -114,6 +172,17 @@ void build_neighbour_list(World<D>& world) {
       fill.assign(g.cell_start.begin(), g.cell_start.end() - 1);
       for (std::size_t i = 0; i < n; ++i) g.sorted[fill[g.cell_of[i]]++] = static_cast<std::uint32_t>(i);
     }
+    if (world.sort_interval > 0 && L.builds % static_cast<std::uint64_t>(world.sort_interval) == 0) {
+      renumber(world, old, have_old, g.sorted);
+      // Grains are now in cell order: the sort is the identity.
+      for (std::size_t k = 0; k < n; ++k) {
+        g.sorted[k] = static_cast<std::uint32_t>(k);
+      }
+      std::vector<std::uint32_t> cells(n);
+      for (std::size_t c = 0; c < ncells; ++c)
+        for (std::uint32_t k = g.cell_start[c]; k < g.cell_start[c + 1]; ++k) cells[k] = static_cast<std::uint32_t>(c);
+      g.cell_of.swap(cells);
+    }
 
     const int zr = D == 3 ? 1 : 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -176,7 +245,7 @@ void build_neighbour_list(World<D>& world) {
 
   for (std::size_t i = 0; i < n; ++i) P.pos_at_build[i] = P.pos[i];
   for (auto& w : world.walls) w.displacement = Vec::Zero();
-  world.max_disp2 = 0.0;
+  world.disp_bound = 0.0;
   world.rebuild_needed = false;
   ++L.builds;
 }

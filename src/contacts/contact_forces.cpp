@@ -26,24 +26,38 @@ void grain_pairs(World<D>& world) {
   const double dt = world.dt;
   const std::size_t nmat = world.materials.size();
   auto& st = world.stats;
+  // Raw pointers: the compiler then knows the arrays do not move inside the loops.
+  const Vec* __restrict pos = P.pos.data();
+  const Vec* __restrict vel = P.vel.data();
+  const Rot* __restrict angvel = P.angvel.data();
+  const double* __restrict radius = P.radius.data();
+  const double* __restrict inv_mass = P.inv_mass.data();
+  const std::uint16_t* __restrict material = P.material.data();
+  Vec* __restrict force = P.force.data();
+  Rot* __restrict torque = P.torque.data();
+  const std::uint32_t* __restrict start = L.start.data();
+  const std::uint32_t* __restrict other = L.other.data();
+  Vec* __restrict spring = L.spring.data();
+  const PairLaw* pair_laws = world.pair_laws.data();
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t b = L.start[i], e = L.start[i + 1];
+    const std::uint32_t b = start[i], e = start[i + 1];
     if (b == e) continue;
-    const Vec xi = P.pos[i];
-    const Vec vi = P.vel[i];
-    const Rot wi = P.angvel[i];
-    const double ri = P.radius[i], imi = P.inv_mass[i];
-    const PairLaw* laws = world.pair_laws.data() + P.material[i] * nmat;
+    const Vec xi = pos[i];
+    const Vec vi = vel[i];
+    const Rot wi = angvel[i];
+    const double ri = radius[i], imi = inv_mass[i];
+    const PairLaw* laws = pair_laws + material[i] * nmat;
     Vec fi = Vec::Zero();
     Rot ti = Dim<D>::zero_rot();
     for (std::uint32_t k = b; k < e; ++k) {
-      const std::uint32_t j = L.other[k];
-      const Vec d = P.pos[j] - xi;
-      const double rj = P.radius[j];
+      const std::uint32_t j = other[k];
+      const Vec d = pos[j] - xi;
+      const double rj = radius[j];
       const double rs = ri + rj;
       const double dist2 = d.squaredNorm();
       if (dist2 >= rs * rs) {
-        L.spring[k] = Vec::Zero();
+        // Apart: the history ends (written only when there is one, to spare stores).
+        if (spring[k].squaredNorm() != 0.0) spring[k] = Vec::Zero();
         continue;
       }
       const double dist = std::sqrt(dist2);
@@ -53,27 +67,25 @@ void grain_pairs(World<D>& world) {
         note_overlap(world, i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
       const double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;  // centre-to-contact lengths
       // Surface velocities at the contact point.
-      const Vec vrel = (P.vel[j] - Dim<D>::cross(P.angvel[j], aj * nrm)) -
-                       (vi + Dim<D>::cross(wi, ai * nrm));
+      const Vec vrel = (vel[j] - Dim<D>::cross(angvel[j], aj * nrm)) - (vi + Dim<D>::cross(wi, ai * nrm));
+      const PairLaw& law = laws[material[j]];
       double fn;
-      const Vec f = contact_force<D>(laws[P.material[j]], ri, rj, imi + P.inv_mass[j], nrm,
-                                     delta, vrel, dt, L.spring[k], fn);
-      P.force[j] += f;
+      const Vec f = contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt, spring[k], fn);
+      force[j] += f;
       fi -= f;
       // Torques: lever arms +ai n (grain i) and -aj n (grain j); only the tangential part acts.
-      const Rot tq = Dim<D>::cross(nrm, L.spring[k]);
+      const Rot tq = Dim<D>::cross(nrm, spring[k]);
       ti -= ai * tq;
-      P.torque[j] -= aj * tq;
+      torque[j] -= aj * tq;
       if constexpr (Measure) {
         st.fabric_stress += d * f.transpose();
         st.sum_force += f.norm();
         ++st.contacts;
-        if (fn > 0.0 && laws[P.material[j]].law == LawKind::kLinear)
-          st.elastic_energy += 0.5 * fn * fn / laws[P.material[j]].linear_kn(ri, rj);
+        if (fn > 0.0 && law.law == LawKind::kLinear) st.elastic_energy += 0.5 * fn * fn / law.linear_kn(ri, rj);
       }
     }
-    P.force[i] += fi;
-    P.torque[i] += ti;
+    force[i] += fi;
+    torque[i] += ti;
   }
 }
 

@@ -42,12 +42,22 @@ class ScopedStage {
   Clock::time_point t0_ = Clock::now();
 };
 
+// True when a grain or wall may have moved far enough that a pair not listed
+// could now touch: 2 x (largest grain displacement) or grain + wall displacement
+// beyond the skin. The cheap velocity bound is refined by an exact pass first.
 template <int D>
-bool list_expired(const World<D>& world) {
+bool list_expired(World<D>& world) {
   double wall_disp = 0.0;
   for (const auto& w : world.walls) wall_disp = std::max(wall_disp, w.displacement.norm());
-  const double d = std::sqrt(world.max_disp2);
-  return 2.0 * d > world.nlist.skin || d + wall_disp > world.nlist.skin;
+  auto expired = [&](double d) {
+    return 2.0 * d > world.nlist.skin || d + wall_disp > world.nlist.skin;
+  };
+  if (!expired(world.disp_bound)) return false;
+  const auto& P = world.particles;
+  double d2 = 0.0;
+  for (std::size_t i = 0; i < P.size(); ++i) d2 = std::max(d2, (P.pos[i] - P.pos_at_build[i]).squaredNorm());
+  world.disp_bound = std::sqrt(d2);
+  return expired(world.disp_bound);
 }
 
 }  // namespace

@@ -70,11 +70,16 @@ struct World {
   double dt_safety = 0.8;
   int dt_update_interval = 50;
   double skin_factor = 0.4;        // skin as a fraction of the mean radius
+  // Every this many neighbour-list builds, grains are renumbered in cell order so
+  // that neighbours sit close in memory (0: never; grain indices then stay fixed).
+  int sort_interval = 0;
 
   double time = 0.0;
   std::uint64_t step = 0;
   bool rebuild_needed = true;
-  double max_disp2 = 0.0;          // largest squared displacement since the last build
+  // Largest grain displacement since the last build: bounded cheaply each step by
+  // the sum of max |v| dt, measured exactly only when the bound reaches half the skin.
+  double disp_bound = 0.0;
 
   // Instability watch: an overlap beyond this fraction of the smaller radius stops
   // the run (the contact force stage notes the first offender).

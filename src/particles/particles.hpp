@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "core/dim.hpp"
@@ -65,6 +66,18 @@ struct Particles {
   }
 
   bool fixed(std::size_t i) const { return flags[i] & kFixed; }
+
+  // Reorders every array: new index k holds the grain that had index order[k].
+  void permute(const std::vector<std::uint32_t>& order) {
+    auto apply = [&](auto& v) {
+      std::remove_reference_t<decltype(v)> out(v.size());
+      for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
+      v.swap(out);
+    };
+    apply(pos), apply(vel), apply(angvel), apply(force), apply(torque), apply(radius);
+    apply(inv_mass), apply(inv_inertia), apply(material), apply(flags), apply(pos_at_build);
+    apply(orient), apply(id);
+  }
 };
 
 }  // namespace geodem

@@ -33,6 +33,7 @@ void build_world(const SceneSettings& s, World<D>& world) {
   world.gravity = to_vec<D>(s.gravity);
   world.local_damping = s.local_damping;
   world.skin_factor = s.skin;
+  world.sort_interval = s.sort_interval;
   world.auto_dt = s.time.step <= 0.0;
   world.dt = s.time.step;
   world.dt_safety = s.time.safety;

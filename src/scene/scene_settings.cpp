@@ -87,6 +87,7 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
   }
   if (auto t = r.table("neighbours")) {
     s.skin = t->in_range("skin", 0.4, 0.01, 10.0);
+    s.sort_interval = static_cast<int>(t->integer("sort_interval", 10, 0, 1000000));
     t->finish();
   }
 

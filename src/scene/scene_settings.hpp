@@ -75,7 +75,8 @@ struct SceneSettings {
   StopSpec stop;
   List gravity;
   double local_damping = 0.0;
-  double skin = 0.4;
+  double skin = 0.4;        // Verlet skin, fraction of the mean radius
+  int sort_interval = 10;   // renumber grains in cell order every N list builds
   std::vector<Material> materials;
   std::vector<PairSpec> pairs;
   std::vector<WallSpec> walls;
