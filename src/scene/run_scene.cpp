@@ -135,7 +135,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   for (const auto& wall : w.walls) {
     nlohmann::json f = nlohmann::json::array();
     for (int k = 0; k < D; ++k) f.push_back(wall.force[k]);
-    walls[wall.name] = {{"force", f}, {"normal_force", -wall.force.dot(wall.normal)}};
+    walls[wall.name] = {{"force", f}};
+    if (wall.kind == WallKind::kPlane) walls[wall.name]["normal_force"] = -wall.force.dot(wall.normal);
     if (wall.area > 0.0) walls[wall.name]["normal_stress"] = wall.normal_stress();
   }
   results["walls"] = walls;
