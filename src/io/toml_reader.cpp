@@ -312,6 +312,17 @@ std::vector<std::string> TableReader::strings(const std::string& key, std::size_
   return v;
 }
 
+std::vector<std::string> TableReader::strings(const std::string& key,
+                                              const std::vector<std::string>& fallback) {
+  const toml::node* n = node(key);
+  if (!n) {
+    record(key, fallback);
+    return fallback;
+  }
+  if (!n->as_array()) fail(key, "expected an array of strings, got " + type_name(*n));
+  return strings(key, n->as_array()->size());
+}
+
 std::optional<TableReader> TableReader::table(const std::string& key) {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;

@@ -44,7 +44,8 @@ class TableReader {
   std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback,
                               std::size_t min_size = 0);
   std::vector<std::vector<double>> number_rows(const std::string& key, std::size_t row_size);
-  std::vector<std::string> strings(const std::string& key, std::size_t size);
+  std::vector<std::string> strings(const std::string& key, std::size_t size);  // exact size
+  std::vector<std::string> strings(const std::string& key, const std::vector<std::string>& fallback);
 
   std::optional<TableReader> table(const std::string& key);
   std::vector<TableReader> tables(const std::string& key);  // array of tables

@@ -1,6 +1,10 @@
 #include "scene/build_scene.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/error.hpp"
@@ -22,6 +26,50 @@ std::uint16_t material_index(const std::vector<Material>& mats, const std::strin
   for (std::size_t i = 0; i < mats.size(); ++i)
     if (mats[i].name == name) return static_cast<std::uint16_t>(i);
   throw std::logic_error("unknown material " + name);  // names were checked when reading
+}
+
+// Reads whitespace- or comma-separated rows; '#' starts a comment.
+template <int D, typename Add>
+void read_particle_file(const ParticleFileSpec& spec, std::size_t index, const std::string& scenario,
+                        Add&& add) {
+  using Vec = typename Dim<D>::Vec;
+  std::ifstream in(spec.path);
+  if (!in) throw InputError(scenario, 0, "particle_files." + std::to_string(index) + ".file", "cannot read " + spec.path);
+  std::string line;
+  int lineno = 0;
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (auto h = line.find('#'); h != std::string::npos) line.resize(h);
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream ls(line);
+    values.clear();
+    for (std::string tok; ls >> tok;) {
+      char* end = nullptr;
+      const double v = std::strtod(tok.c_str(), &end);
+      if (end == tok.c_str() || *end != '\0' || !std::isfinite(v))
+        throw InputError(spec.path, lineno, "", "expected numbers, got '" + tok + "'");
+      values.push_back(v);
+    }
+    if (values.empty()) continue;
+    if (values.size() != spec.columns.size())
+      throw InputError(spec.path, lineno, "",
+                       "expected " + std::to_string(spec.columns.size()) + " columns, got " + std::to_string(values.size()));
+    Vec x = Vec::Zero(), v = Vec::Zero();
+    double r = spec.radius;
+    for (std::size_t c = 0; c < values.size(); ++c) {
+      const std::string& name = spec.columns[c];
+      if (name == "x") x[0] = values[c];
+      else if (name == "y") x[1] = values[c];
+      else if (name == "z" && D == 3) x[D - 1] = values[c];
+      else if (name == "vx") v[0] = values[c];
+      else if (name == "vy") v[1] = values[c];
+      else if (name == "vz" && D == 3) v[D - 1] = values[c];
+      else if (name == "radius") r = values[c];
+    }
+    if (!(r > 0.0)) throw InputError(spec.path, lineno, "", "radius must be positive");
+    add(x, r, v);
+  }
 }
 
 }  // namespace
@@ -98,6 +146,14 @@ void build_world(const SceneSettings& s, World<D>& world) {
     world.particles.add(to_vec<D>(p.position), p.radius, s.materials[m].density, m,
                         to_vec<D>(p.velocity), w, p.fixed);
     placed.push_back({to_vec<D>(p.position), p.radius});
+  }
+  for (std::size_t f = 0; f < s.particle_files.size(); ++f) {
+    const auto& spec = s.particle_files[f];
+    const auto m = material_index(s.materials, spec.material);
+    read_particle_file<D>(spec, f, s.file, [&](const Vec& x, double r, const Vec& v) {
+      world.particles.add(x, r, s.materials[m].density, m, v);
+      placed.push_back({x, r});
+    });
   }
   Random rng(s.seed);
   for (std::size_t c = 0; c < s.clouds.size(); ++c) {

@@ -1,6 +1,7 @@
 #include "scene/scene_settings.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <set>
 
@@ -190,7 +191,34 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     s.clouds.push_back(c);
     t.finish();
   }
-  if (s.particles.empty() && s.clouds.empty())
+  for (auto& t : r.tables("particle_files")) {
+    ParticleFileSpec f;
+    const std::string name = t.string("file", "");
+    if (name.empty()) t.fail("file", "missing; expected the path of a text file of grains");
+    const std::filesystem::path p(name);
+    f.path = p.is_absolute() ? name : (std::filesystem::path(file).parent_path() / p).string();
+    if (!std::filesystem::exists(f.path)) t.fail("file", "file not found: " + f.path);
+    const std::vector<std::string> fallback =
+        D == 3 ? std::vector<std::string>{"x", "y", "z", "radius"} : std::vector<std::string>{"x", "y", "radius"};
+    f.columns = t.strings("columns", fallback);
+    const std::set<std::string> known = {"id", "x", "y", "z", "radius", "vx", "vy", "vz", "_"};
+    std::set<std::string> seen;
+    for (const auto& c : f.columns) {
+      if (!known.count(c)) t.fail("columns", "unknown column '" + c + "'; known: id x y z radius vx vy vz _");
+      if (c != "_" && !seen.insert(c).second) t.fail("columns", "column '" + c + "' given twice");
+    }
+    for (const char* c : {"x", "y", "z"})
+      if ((D == 3 || std::string(c) != "z") && !seen.count(c))
+        t.fail("columns", std::string("missing column '") + c + "'");
+    if (!seen.count("radius")) {
+      if (!t.has("radius")) t.fail("radius", "no radius column: give the grains' 'radius'");
+      f.radius = t.positive("radius", 0.0);
+    }
+    f.material = material_name(t, "material");
+    s.particle_files.push_back(f);
+    t.finish();
+  }
+  if (s.particles.empty() && s.clouds.empty() && s.particle_files.empty())
     r.fail("particles", "the scene has no grains: add [[particles]] or [[clouds]]");
 
   if (auto t = r.table("output")) {

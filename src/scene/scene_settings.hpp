@@ -45,6 +45,14 @@ struct CloudSpec {
   std::string material;
 };
 
+// Grains read from a text file: whitespace- or comma-separated columns, '#' comments.
+struct ParticleFileSpec {
+  std::string path;                  // resolved against the scenario's folder
+  std::vector<std::string> columns;  // names among id, x, y, z, radius, vx, vy, vz; "_" skips
+  double radius = 0.0;               // when there is no radius column
+  std::string material;
+};
+
 struct TimeSpec {
   double step = 0.0;  // 0: automatic
   double safety = 0.8;
@@ -82,6 +90,7 @@ struct SceneSettings {
   std::vector<WallSpec> walls;
   std::vector<ParticleSpec> particles;
   std::vector<CloudSpec> clouds;
+  std::vector<ParticleFileSpec> particle_files;
   OutputSpec output;
   nlohmann::json resolved;  // every setting with its value, defaults included
 };

@@ -164,6 +164,17 @@ class CliTest(unittest.TestCase):
         self.assertEqual(s["status"], "unstable")
         self.assertTrue((out / "history.csv").exists())
 
+    def test_particle_file(self):
+        (self.dir / "grains.txt").write_text("# id x y z\n1 0.05 0.05 0.01\n2, 0.05, 0.05, 0.03\n")
+        text = scene(3).replace("[[clouds]]", "[[particle_files]]\nfile = \"grains.txt\"\n"
+                                "columns = [\"id\", \"x\", \"y\", \"z\"]\nradius = 0.005\n\n[[clouds]]")
+        out = self.dir / "out"
+        r = run("run", self.write(text), "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(json.loads((out / "summary.json").read_text())["results"]["particles"], 52)
+        (self.dir / "grains.txt").write_text("1 0.05 0.05 oops\n")
+        self.assertBadInput(text, "grains.txt:1", "oops")
+
     def test_plot_command(self):
         out = self.dir / "out"
         self.assertEqual(run("run", self.write(scene(2)), "--out", str(out), "--quiet").returncode, 0)
