@@ -73,8 +73,8 @@ void grain_pairs(World<D>& world) {
       const Vec f = contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt, spring[k], fn);
       force[j] += f;
       fi -= f;
-      // Torques: lever arms +ai n (grain i) and -aj n (grain j); only the tangential part acts.
-      const Rot tq = Dim<D>::cross(nrm, spring[k]);
+      // Torques: lever arms +ai n (grain i) and -aj n (grain j); the normal part gives none.
+      const Rot tq = Dim<D>::cross(nrm, f);
       ti -= ai * tq;
       torque[j] -= aj * tq;
       if constexpr (Measure) {
@@ -133,7 +133,7 @@ void grain_walls(World<D>& world) {
       const Vec f = contact_force<D>(law, ri, wall_partner_radius(law, ri), P.inv_mass[i], nrm,
                                      delta, vrel, dt, L.wall_spring[k], fn);
       P.force[i] -= f;
-      P.torque[i] -= a * Dim<D>::cross(nrm, L.wall_spring[k]);
+      P.torque[i] -= a * Dim<D>::cross(nrm, f);
       wall.force += f;
       if constexpr (Measure) {
         st.fabric_stress += (a * nrm) * f.transpose();

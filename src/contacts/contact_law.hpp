@@ -16,6 +16,7 @@ namespace geodem {
 struct NormalResult {
   double fn;       // normal force magnitude (positive: repulsive)
   double kt;       // tangential stiffness to use this step
+  double cn;       // normal viscous coefficient (N s/m), 0 without damping
 };
 
 // Radius that stands for a flat wall in the pair law of a grain of radius r. The Hertz law
@@ -31,18 +32,17 @@ inline NormalResult normal_force(const PairLaw& p, double r1, double r2, double 
                                  double delta, double vn) {
   if (p.law == LawKind::kLinear) {
     const double kn = p.linear_kn(r1, r2);
-    double fn = kn * delta;
-    if (p.beta > 0.0 && inv_msum > 0.0) fn -= 2.0 * p.beta * std::sqrt(kn / inv_msum) * vn;
-    return {fn, p.linear_kt(kn)};
+    const double cn = (p.beta > 0.0 && inv_msum > 0.0) ? 2.0 * p.beta * std::sqrt(kn / inv_msum) : 0.0;
+    return {kn * delta - cn * vn, p.linear_kt(kn), cn};
   }
   // Hertz-Mindlin (no slip): Fn = 4/3 E* sqrt(R*) delta^1.5, kt = 8 G* sqrt(R* delta).
   // A flat wall has r2 = infinity (see wall_partner_radius): R* = r1.
   const double rstar = std::isinf(r2) ? r1 : r1 * r2 / (r1 + r2);
   const double a = std::sqrt(rstar * delta);  // contact radius
-  double fn = 4.0 / 3.0 * p.estar * a * delta;
-  if (p.hertz_damp > 0.0 && inv_msum > 0.0)
-    fn -= p.hertz_damp * std::sqrt(2.0 * p.estar * a / inv_msum) * vn;
-  return {fn, 8.0 * p.gstar * a};
+  const double cn = (p.hertz_damp > 0.0 && inv_msum > 0.0)
+                        ? p.hertz_damp * std::sqrt(2.0 * p.estar * a / inv_msum)
+                        : 0.0;
+  return {4.0 / 3.0 * p.estar * a * delta - cn * vn, 8.0 * p.gstar * a, cn};
 }
 
 // Updates the tangential spring (incremental, rotated with the contact plane) and
@@ -66,10 +66,21 @@ inline typename Dim<D>::Vec contact_force(const PairLaw& p, double r1, double r2
   const Vec vt = vrel - vn * n;
   spring -= (nr.kt * dt) * vt;
   const double limit = p.mu * std::max(nr.fn, 0.0);
-  const double ft2 = spring.squaredNorm();
-  if (ft2 > limit * limit) spring *= limit / std::sqrt(ft2);
   fn_out = nr.fn;
-  return nr.fn * n + spring;
+  if (!p.tangential_damping) {
+    const double ft2 = spring.squaredNorm();
+    if (ft2 > limit * limit) spring *= limit / std::sqrt(ft2);
+    return nr.fn * n + spring;
+  }
+  // Tangential dashpot with the normal coefficient (LIGGGHTS' default for Hooke):
+  // when the total exceeds Coulomb's limit, the spring takes the limited total.
+  Vec ft = spring + nr.cn * vt;
+  const double ft2 = ft.squaredNorm();
+  if (ft2 > limit * limit) {
+    ft *= limit / std::sqrt(ft2);
+    spring = ft;
+  }
+  return nr.fn * n + ft;
 }
 
 }  // namespace geodem

@@ -14,6 +14,7 @@ PairLaw combine(const Material& a, const Material& b) {
   p.mu = std::min(a.friction, b.friction);
   const double e = std::min(a.restitution, b.restitution);
   p.beta = damping_ratio(e);
+  p.tangential_damping = a.tangential_damping && b.tangential_damping;
   if (a.law == LawKind::kLinear) {
     if (a.kn > 0.0 || b.kn > 0.0) {
       // Constant stiffness: springs in series when both give one.

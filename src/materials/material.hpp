@@ -29,6 +29,7 @@ struct Material {
   double poisson = 0.25;    // Hertz-Mindlin
   double friction = 0.5;    // Coulomb coefficient (tan of the friction angle)
   double restitution = 1.0; // normal coefficient of restitution (1: no viscous damping)
+  bool tangential_damping = false;  // tangential dashpot with the normal coefficient
 };
 
 // Damping ratio of a linear spring-dashpot that gives restitution e:
@@ -50,6 +51,7 @@ struct PairLaw {
   double mu = 0.0;                    // Coulomb coefficient
   double beta = 0.0;                  // viscous damping ratio from the restitution
   double hertz_damp = 0.0;            // 2 sqrt(5/6) * beta_hertz (LIGGGHTS/Tsuji form)
+  bool tangential_damping = false;
 
   // Normal stiffness of the linear law for grain radii r1, r2.
   double linear_kn(double r1, double r2) const {

@@ -27,6 +27,7 @@ Material read_material(TableReader& t, const std::string& fallback_name) {
   m.law = law == "hertz" ? LawKind::kHertz : LawKind::kLinear;
   m.friction = friction_from(t, 0.5);
   m.restitution = t.in_range("restitution", 1.0, 1e-6, 1.0);
+  m.tangential_damping = t.boolean("tangential_damping", false);
   if (m.law == LawKind::kLinear) {
     if (t.has("kn") && t.has("young"))
       t.fail("kn", "give either constant stiffness 'kn' or contact modulus 'young', not both");
