@@ -146,11 +146,15 @@ double solid_volume_in_box(const World<D>& world, const Box<D>& box) {
         for (int b = a; b > 0 && cuts[b - 1] > cuts[b]; --b) std::swap(cuts[b - 1], cuts[b]);
       for (int c = 0; c + 1 < nc; ++c) {
         const double a = cuts[c], b = cuts[c + 1], half = 0.5 * (b - a), mid = 0.5 * (a + b);
+        // At a kink the slice area behaves as |theta - kink|^(3/2); the cubic map
+        // s = u (3 - u^2) / 2 (zero slope at both ends) turns that into a smooth integrand.
         for (int g = 0; g < 8; ++g)
           for (double sgn : {-1.0, 1.0}) {
-            const double t = mid + sgn * half * kGaussX[g];
+            const double u = sgn * kGaussX[g];
+            const double t = mid + half * 0.5 * u * (3.0 - u * u);
+            const double jac = half * 1.5 * (1.0 - u * u);
             const double rho = r * std::cos(t);
-            v += kGaussW[g] * half * r * std::cos(t) *
+            v += kGaussW[g] * jac * r * std::cos(t) *
                  disc_rectangle_area(x[0], x[1], rho, box.lo[0], box.lo[1], box.hi[0], box.hi[1]);
           }
       }

@@ -43,7 +43,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     box = b;
   }
 
-  std::vector<std::string> cols = {"step", "time", "dt", "kinetic_energy", "unbalanced",
+  std::vector<std::string> cols = {"step", "time", "wall_s", "dt", "kinetic_energy", "unbalanced",
                                    "coordination", "contacts", "wall_contacts"};
   if (box) cols.push_back("porosity");
   for (int a = 0; a < D; ++a)
@@ -56,8 +56,10 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   history.open(opt.out_dir + "/history.csv", cols);
   VtkSeries<D> vtk(opt.out_dir);
 
+  const auto t0 = Clock::now();
   auto record = [&]() {
-    std::vector<double> row = {static_cast<double>(w.step), w.time, w.dt, kinetic_energy(w),
+    const double wall_now = std::chrono::duration<double>(Clock::now() - t0).count();
+    std::vector<double> row = {static_cast<double>(w.step), w.time, wall_now, w.dt, kinetic_energy(w),
                                unbalanced_force_ratio(w), coordination_number(w),
                                static_cast<double>(w.stats.contacts),
                                static_cast<double>(w.stats.wall_contacts)};
@@ -74,7 +76,6 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   };
 
   Progress progress(opt.quiet);
-  const auto t0 = Clock::now();
   std::string status = "completed", stop_reason = "end of duration";
   std::string message;
   update_timestep(w);

@@ -92,7 +92,7 @@ class CliTest(unittest.TestCase):
             self.assertEqual(summary["scenario"]["materials"][0]["kt_over_kn"], 0.5)
             with open(out / "history.csv") as f:
                 rows = list(csv.reader(f))
-            self.assertEqual(rows[0][:3], ["step", "time", "dt"])
+            self.assertEqual(rows[0][:4], ["step", "time", "wall_s", "dt"])
             self.assertGreater(len(rows), 2)
             self.assertTrue(all(len(r) == len(rows[0]) for r in rows))
             pvd = (out / "vtk" / "particles.pvd").read_text()
