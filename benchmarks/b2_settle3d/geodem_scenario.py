@@ -35,6 +35,7 @@ step = 2e-5
 steps = {settle + dense}
 [physics]
 gravity = [0.0, 0.0, -9.81]
+max_overlap = 1.0               # LIGGGHTS' soft Hooke contacts overlap deeply when the column lands
 [neighbours]
 skin = {skin}                   # fraction of the radius (LIGGGHTS: 0.002 m = 0.2 r)
 [[materials]]

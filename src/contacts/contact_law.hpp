@@ -74,7 +74,7 @@ inline typename Dim<D>::Vec contact_force(const PairLaw& p, double r1, double r2
   }
   // Tangential dashpot with the normal coefficient (LIGGGHTS' default for Hooke):
   // when the total exceeds Coulomb's limit, the spring takes the limited total.
-  Vec ft = spring + nr.cn * vt;
+  Vec ft = spring - nr.cn * vt;
   const double ft2 = ft.squaredNorm();
   if (ft2 > limit * limit) {
     ft *= limit / std::sqrt(ft2);

@@ -80,6 +80,7 @@ void build_world(const SceneSettings& s, World<D>& world) {
   world.materials = s.materials;
   world.gravity = to_vec<D>(s.gravity);
   world.local_damping = s.local_damping;
+  world.overlap_limit = s.max_overlap;
   world.skin_factor = s.skin;
   world.sort_interval = s.sort_interval;
   world.auto_dt = s.time.step <= 0.0;

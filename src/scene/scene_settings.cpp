@@ -85,6 +85,7 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     s.gravity = t->numbers("gravity", s.gravity, D);
     if (s.gravity.size() != D) t->fail("gravity", "expected " + std::to_string(D) + " components");
     s.local_damping = t->in_range("local_damping", 0.0, 0.0, 0.99);
+    s.max_overlap = t->in_range("max_overlap", 0.5, 1e-3, 2.0);
     t->finish();
   }
   if (auto t = r.table("neighbours")) {

@@ -83,6 +83,7 @@ struct SceneSettings {
   StopSpec stop;
   List gravity;
   double local_damping = 0.0;
+  double max_overlap = 0.5;  // stop as unstable beyond this overlap / smaller radius
   double skin = 0.4;        // Verlet skin, fraction of the mean radius
   int sort_interval = 10;   // renumber grains in cell order every N list builds
   std::vector<Material> materials;
