@@ -39,6 +39,7 @@ void grain_pairs(World<D>& world) {
   const std::uint32_t* __restrict other = L.other.data();
   Vec* __restrict spring = L.spring.data();
   const PairLaw* pair_laws = world.pair_laws.data();
+  const double overlap_limit = world.overlap_limit;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t b = start[i], e = start[i + 1];
     if (b == e) continue;
@@ -63,7 +64,7 @@ void grain_pairs(World<D>& world) {
       const double dist = std::sqrt(dist2);
       const Vec nrm = d / dist;
       const double delta = rs - dist;
-      if (delta > world.overlap_limit * std::min(ri, rj)) [[unlikely]]
+      if (delta > overlap_limit * std::min(ri, rj)) [[unlikely]]
         note_overlap(world, i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
       const double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;  // centre-to-contact lengths
       // Surface velocities at the contact point.

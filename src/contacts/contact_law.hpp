@@ -28,7 +28,7 @@ inline double wall_partner_radius(const PairLaw& p, double r) {
 
 // Normal force of the pair's law; also returns the tangential stiffness.
 // inv_msum = 1/m1 + 1/m2 (m* = 1/inv_msum); r1, r2 radii (r2 = wall_partner_radius for walls).
-inline NormalResult normal_force(const PairLaw& p, double r1, double r2, double inv_msum,
+[[gnu::always_inline]] inline NormalResult normal_force(const PairLaw& p, double r1, double r2, double inv_msum,
                                  double delta, double vn) {
   if (p.law == LawKind::kLinear) {
     const double kn = p.linear_kn(r1, r2);
@@ -48,7 +48,7 @@ inline NormalResult normal_force(const PairLaw& p, double r1, double r2, double 
 // Updates the tangential spring (incremental, rotated with the contact plane) and
 // applies Coulomb's limit; returns the total force on body 2.
 template <int D>
-inline typename Dim<D>::Vec contact_force(const PairLaw& p, double r1, double r2,
+[[gnu::always_inline]] inline typename Dim<D>::Vec contact_force(const PairLaw& p, double r1, double r2,
                                           double inv_msum, const typename Dim<D>::Vec& n,
                                           double delta, const typename Dim<D>::Vec& vrel,
                                           double dt, typename Dim<D>::Vec& spring,

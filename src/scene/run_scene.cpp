@@ -132,6 +132,12 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   for (std::size_t i = 0; i < w.particles.size(); ++i)
     if (w.particles.inv_mass[i] > 0.0) weight += w.gravity.norm() / w.particles.inv_mass[i];
   results["total_weight"] = weight;
+  if (!w.particles.pos.empty()) {  // extent of the grain centres
+    auto lo = w.particles.pos[0], hi = w.particles.pos[0];
+    for (const auto& x : w.particles.pos) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    results["centres_min"] = std::vector<double>(lo.data(), lo.data() + D);
+    results["centres_max"] = std::vector<double>(hi.data(), hi.data() + D);
+  }
   nlohmann::json walls = nlohmann::json::object();
   for (const auto& wall : w.walls) {
     nlohmann::json f = nlohmann::json::array();
