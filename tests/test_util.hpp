@@ -69,7 +69,9 @@ double spin_z(const typename Dim<D>::Rot& w) {
   }
 }
 
-inline double rel_err(double got, double want) { return std::abs(got - want) / std::abs(want); }
+inline double rel_err(double got, double want) {
+  return std::abs(got - want) / std::abs(want);
+}
 
 // Prints one measured quantity so that a run of the suite documents its accuracy.
 inline void report(const std::string& what, double value) {
@@ -105,9 +107,8 @@ inline Material modulus_material(double young, double kt_over_kn, double frictio
   return m;
 }
 
-inline Material hertz_material(double young, double poisson, double density,
-                               double friction = 0.0, double restitution = 1.0,
-                               const std::string& name = "grain") {
+inline Material hertz_material(double young, double poisson, double density, double friction = 0.0,
+                               double restitution = 1.0, const std::string& name = "grain") {
   Material m;
   m.name = name;
   m.law = LawKind::kHertz;
@@ -173,8 +174,7 @@ std::size_t fill_lattice(World<D>& w, const Vec<D>& lo, const Vec<D>& hi, double
                          std::size_t max_n = std::numeric_limits<std::size_t>::max()) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::array<int, 3> count{1, 1, 1};
-  for (int k = 0; k < D; ++k)
-    count[k] = static_cast<int>(std::floor((hi[k] - lo[k]) / spacing));
+  for (int k = 0; k < D; ++k) count[k] = static_cast<int>(std::floor((hi[k] - lo[k]) / spacing));
   // Vertical axis outermost so that a partial fill is a flat-topped column.
   std::size_t added = 0;
   const int nz = D == 3 ? count[2] : 1;
@@ -289,8 +289,9 @@ void place_on_floor(World<D>& w, double r, double density, std::uint16_t mat, do
 // approach speed v): the overlap is v/wd exp(-beta w t) sin(wd t) during the contact.
 struct LinearImpactTheory {
   double w, wd, zeta, duration, max_overlap;
-  // Largest separating speed: where the force changes sign (it turns attractive at the end).
-  double max_separation_speed;
+  // The force turns attractive at t = attractive_from (= duration when undamped), where
+  // the separating speed is largest.
+  double attractive_from, max_separation_speed;
   LinearImpactTheory(double mstar, double kn, double beta, double v) {
     w = std::sqrt(kn / mstar);
     zeta = beta * w;
@@ -300,6 +301,7 @@ struct LinearImpactTheory {
     max_overlap = v / wd * std::exp(-zeta * tm) * std::sin(wd * tm);
     // Zero acceleration: tan(wd t) = 2 zeta wd / (zeta^2 - wd^2), with wd t in (pi/2, pi].
     const double ts = (std::numbers::pi - std::atan2(2.0 * zeta * wd, wd * wd - zeta * zeta)) / wd;
+    attractive_from = ts;
     max_separation_speed =
         -v * std::exp(-zeta * ts) * (std::cos(wd * ts) - zeta / wd * std::sin(wd * ts));
   }

@@ -1,0 +1,181 @@
+// Pair-law mixing rules, the Love-Weber average stress of a known static chain of forces,
+// and the automatic time step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "broadphase/neighbour_search.hpp"
+#include "integrate/critical_timestep.hpp"
+#include "test_util.hpp"
+
+namespace geodem::test {
+namespace {
+
+TEST(PairLaw, DampingRatioGivesRestitution) {
+  EXPECT_EQ(damping_ratio(1.0), 0.0);
+  for (double e : {0.05, 0.3, 0.8, 0.99}) {
+    const double b = damping_ratio(e);
+    // Restitution of the linear spring-dashpot: exp(-pi beta / sqrt(1 - beta^2)).
+    EXPECT_NEAR(std::exp(-std::numbers::pi * b / std::sqrt(1.0 - b * b)), e, 1e-14);
+  }
+}
+
+TEST(PairLaw, LinearMixingRules) {
+  const Material a = linear_material(2e5, 1e5, 0.6, 0.9);
+  const Material b = linear_material(6e5, 2e5, 0.3, 0.4);
+  const PairLaw p = combine(a, b);
+  EXPECT_TRUE(p.constant_stiffness);
+  EXPECT_NEAR(p.kn, 2e5 * 6e5 / 8e5, 1e-9);  // springs in series
+  EXPECT_NEAR(p.kt, 1e5 * 2e5 / 3e5, 1e-9);
+  EXPECT_EQ(p.mu, 0.3);                   // smaller friction
+  EXPECT_EQ(p.beta, damping_ratio(0.4));  // smaller restitution
+  const PairLaw same = combine(a, a);
+  EXPECT_EQ(same.kn, 2e5);
+  EXPECT_EQ(same.kt, 1e5);
+  // Modulus form: kn = 2 E r1 r2 / (r1 + r2) for equal moduli.
+  const Material m = modulus_material(1e8, 0.25, 0.5, 1.0);
+  const PairLaw pm = combine(m, m);
+  EXPECT_NEAR(pm.linear_kn(0.01, 0.03), 2e8 * 0.01 * 0.03 / 0.04, 1e-6);
+  EXPECT_NEAR(pm.linear_kt(pm.linear_kn(0.01, 0.03)), 0.25 * 2e8 * 0.01 * 0.03 / 0.04, 1e-6);
+}
+
+TEST(PairLaw, HertzEffectiveModuli) {
+  const Material a = hertz_material(7e10, 0.33, 2700.0);
+  const Material b = hertz_material(2e11, 0.29, 7800.0);
+  const PairLaw p = combine(a, b);
+  const double estar = 1.0 / ((1 - 0.33 * 0.33) / 7e10 + (1 - 0.29 * 0.29) / 2e11);
+  const double gstar =
+      1.0 / (2 * (2 - 0.33) * (1 + 0.33) / 7e10 + 2 * (2 - 0.29) * (1 + 0.29) / 2e11);
+  EXPECT_LT(rel_err(p.estar, estar), 1e-14);
+  EXPECT_LT(rel_err(p.gstar, gstar), 1e-14);
+  EXPECT_THROW(combine(a, linear_material(1e5, 1e5, 0.5, 1.0)), std::invalid_argument);
+}
+
+template <typename T>
+class AverageStress : public ::testing::Test {};
+TYPED_TEST_SUITE(AverageStress, Dims, DimNames);
+
+// Two grains stacked between a floor (y = 0) and a ceiling, all three contacts carrying the
+// same force F: a static chain. Love-Weber: sigma V = sum of branch (x) force; the branch to
+// a wall ends at the middle of the overlap, so sigma_yy V = F (4 r - delta_g - delta_w) (the
+// distance between the two wall contact points) and every other component vanishes.
+TYPED_TEST(AverageStress, TwoGrainsPressedBetweenWalls) {
+  constexpr int D = TypeParam::value;
+  const double kn = 2e5, r = 0.01, force = 30.0, volume = 2.5e-4;
+  World<D> w;
+  const auto mat = add_material(w, linear_material(kn, 0.5 * kn, 0.5, 1.0));
+  const double dw = force / kn, dg = force / kn;  // same kn grain-grain and grain-wall
+  const double y1 = r - dw, y2 = y1 + 2.0 * r - dg, top = y2 + r - dw;
+  add_plane(w, vec<D>(0.0, 0.0), vec<D>(0.0, 1.0), mat, "floor");
+  add_plane(w, vec<D>(0.0, top), vec<D>(0.0, -1.0), mat, "ceiling");
+  w.resolve_pair_laws();
+  w.particles.add(vec<D>(0.3, y1, -0.2), r, 2600.0, mat);
+  w.particles.add(vec<D>(0.3, y2, -0.2), r, 2600.0, mat);
+  w.dt = 1e-6;
+  w.measure_this_step = true;
+  step(w);
+
+  EXPECT_EQ(w.stats.contacts, 1u);
+  EXPECT_EQ(w.stats.wall_contacts, 2u);
+  EXPECT_NEAR(w.stats.sum_force, 3.0 * force, 1e-9 * force);
+  EXPECT_NEAR(w.stats.elastic_energy, 3.0 * 0.5 * force * force / kn, 1e-9 * force * dw);
+  EXPECT_NEAR(coordination_number(w), 1.0, 1e-15);
+  // Balanced: the chain is in equilibrium.
+  EXPECT_LT(unbalanced_force_ratio(w), 1e-9);
+  EXPECT_NEAR(-w.walls[0].force.dot(w.walls[0].normal), force, 1e-9 * force);
+  EXPECT_NEAR(-w.walls[1].force.dot(w.walls[1].normal), force, 1e-9 * force);
+
+  const auto sigma = average_stress(w, volume);
+  const double want = force * (4.0 * r - dg - dw) / volume;
+  EXPECT_LT(rel_err(sigma(1, 1), want), 1e-12);
+  // Close to F H / V with H the wall spacing, to O(delta / H).
+  EXPECT_LT(rel_err(sigma(1, 1), force * top / volume), 2.0 * dw / top);
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < D; ++b)
+      if (a != 1 || b != 1) {
+        EXPECT_NEAR(sigma(a, b), 0.0, 1e-12 * want) << a << b;
+      }
+}
+
+// The same chain laid along x and rotated: the stress tensor rotates with it.
+TYPED_TEST(AverageStress, RotatedChainGivesRotatedTensor) {
+  constexpr int D = TypeParam::value;
+  const double kn = 2e5, r = 0.01, force = 10.0, volume = 1e-3, angle = 0.3;
+  World<D> w;
+  const auto mat = add_material(w, linear_material(kn, 0.5 * kn, 0.5, 1.0));
+  const Vec<D> n = vec<D>(std::cos(angle), std::sin(angle));
+  const double d = force / kn;
+  const double s1 = r - d, s2 = s1 + 2.0 * r - d, top = s2 + r - d;
+  add_plane(w, Vec<D>::Zero(), n, mat, "a");
+  add_plane(w, Vec<D>(top * n), Vec<D>(-n), mat, "b");
+  w.resolve_pair_laws();
+  w.particles.add(Vec<D>(s1 * n), r, 2600.0, mat);
+  w.particles.add(Vec<D>(s2 * n), r, 2600.0, mat);
+  w.dt = 1e-6;
+  w.measure_this_step = true;
+  step(w);
+  const auto sigma = average_stress(w, volume);
+  const auto want = (force * (4.0 * r - 2.0 * d) / volume * n * n.transpose()).eval();
+  EXPECT_LT((sigma - want).norm(), 1e-10 * want.norm());
+}
+
+template <typename T>
+class CriticalTimestep : public ::testing::Test {};
+TYPED_TEST_SUITE(CriticalTimestep, Dims, DimNames);
+
+TYPED_TEST(CriticalTimestep, PositiveAndBelowTheSpringPeriod) {
+  constexpr int D = TypeParam::value;
+  const double kn = 1e5, r = 0.01, rho = 2600.0;
+  World<D> w;
+  const auto mat = add_material(w, linear_material(kn, 0.5 * kn, 0.5, 0.5, rho));
+  w.resolve_pair_laws();
+  // A lone grain.
+  w.particles.add(Vec<D>::Zero(), r, rho, mat);
+  build_neighbour_list(w);
+  const double m = mass(w, 0);
+  const double lone = critical_timestep(w);
+  EXPECT_GT(lone, 0.0);
+  EXPECT_LT(lone, std::sqrt(m / kn));
+
+  // A packed cloud: more contacts, a shorter step, still positive.
+  World<D> packed;
+  add_material(packed, linear_material(kn, 0.5 * kn, 0.5, 0.5, rho));
+  packed.resolve_pair_laws();
+  std::mt19937_64 rng(1);
+  fill_lattice(packed, Vec<D>(Vec<D>::Zero()), Vec<D>(Vec<D>::Constant(10 * 1.9 * r)), 1.9 * r, r,
+               r, 0.0, 0.0, rho, 0, rng);
+  build_neighbour_list(packed);
+  const double dt = critical_timestep(packed);
+  EXPECT_GT(dt, 0.0);
+  EXPECT_LT(dt, lone);
+  // 2D (3D) square (cubic) lattice: 4 (6) contacts of kn each on an inner grain.
+  EXPECT_LT(dt, std::sqrt(m / (2 * D * kn)));
+
+  // auto_dt sets the step on the first step.
+  packed.auto_dt = true;
+  packed.dt = 0.0;
+  step(packed);
+  EXPECT_GT(packed.dt, 0.0);
+  EXPECT_LE(packed.dt, lone);
+}
+
+TEST(CriticalTimestep, HertzBelowTheContactPeriod) {
+  const double r = 0.01, rho = 2800.0, young = 4.8e10, nu = 0.2;
+  World<3> w;
+  add_material(w, hertz_material(young, nu, rho));
+  w.resolve_pair_laws();
+  const double delta = 1e-3 * r;
+  w.particles.add(vec<3>(0.0, 0.0), r, rho, 0);
+  w.particles.add(vec<3>(2.0 * r - delta, 0.0), r, rho, 0);
+  build_neighbour_list(w);
+  const double dt = critical_timestep(w);
+  const double estar = young / (2.0 * (1.0 - nu * nu));
+  const double k = 2.0 * estar * std::sqrt(0.5 * r * delta);  // dF/d(delta) at this overlap
+  EXPECT_GT(dt, 0.0);
+  EXPECT_LT(dt, std::sqrt(mass(w, 0) / k));
+}
+
+}  // namespace
+}  // namespace geodem::test

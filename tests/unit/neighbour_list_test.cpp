@@ -1,0 +1,217 @@
+// The Verlet list against brute force on random clouds: every grain pair closer than
+// r_i + r_j + skin and every grain-wall pair closer than r + skin is listed, and nothing
+// else; rows are sorted and hold each pair once; history is carried over by a rebuild.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <string>
+#include <utility>
+
+#include "broadphase/neighbour_search.hpp"
+#include "test_util.hpp"
+
+namespace geodem::test {
+namespace {
+
+template <typename T>
+class NeighbourListTest : public ::testing::Test {};
+TYPED_TEST_SUITE(NeighbourListTest, Dims, DimNames);
+
+enum class Cloud { kUniform, kClustered, kWithOutlier };
+
+// Random grains (radii 0.5 to 1.5) in a box of side L, with plane walls on the box faces.
+template <int D>
+World<D> random_cloud(Cloud kind, std::size_t n, double side, std::uint64_t seed) {
+  World<D> w;
+  const auto mat = add_material(w, linear_material(1e5, 5e4, 0.5, 0.5));
+  add_box(w, Vec<D>(Vec<D>::Zero()), Vec<D>(Vec<D>::Constant(side)), mat, mat);
+  if constexpr (D == 2) {
+    Wall<D> seg;  // a slanted segment across the box
+    seg.kind = WallKind::kSegment;
+    seg.point = vec<D>(0.2 * side, 0.3 * side);
+    seg.end = vec<D>(0.7 * side, 0.6 * side);
+    seg.material = mat;
+    w.walls.push_back(seg);
+  }
+  w.resolve_pair_laws();
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec<D> x;
+    for (int k = 0; k < D; ++k) {
+      x[k] = kind == Cloud::kClustered ? 0.5 * side + 0.08 * side * gauss(rng) : side * u(rng);
+    }
+    w.particles.add(x, 0.5 + u(rng), 1000.0, mat);
+  }
+  if (kind == Cloud::kWithOutlier) {
+    // One grain very far away: the grid must coarsen and clamp, not lose neighbours.
+    w.particles.add(Vec<D>(Vec<D>::Constant(1e4 * side)), 1.0, 1000.0, mat);
+    w.particles.add(Vec<D>(Vec<D>::Constant(1e4 * side + 1.5)), 1.0, 1000.0, mat);
+  }
+  return w;
+}
+
+// Whether the list's test lists a pair: |xj - xi| < (ri + skin) + rj, as the search does.
+template <int D>
+bool within_reach(const World<D>& w, std::size_t i, std::size_t j, double skin) {
+  const auto& P = w.particles;
+  const double reach = P.radius[i] + skin + P.radius[j];
+  return (P.pos[j] - P.pos[i]).squaredNorm() < reach * reach;
+}
+
+template <int D>
+double wall_gap(const Wall<D>& wall, const Vec<D>& x) {
+  if (wall.kind == WallKind::kPlane) return (x - wall.point).dot(wall.normal);
+  const Vec<D> seg = wall.end - wall.point;
+  const double t = std::clamp((x - wall.point).dot(seg) / seg.squaredNorm(), 0.0, 1.0);
+  return (wall.point + t * seg - x).norm();
+}
+
+template <int D>
+void check_against_brute_force(const World<D>& w) {
+  const auto& P = w.particles;
+  const auto& L = w.nlist;
+  const std::size_t n = P.size();
+  ASSERT_EQ(L.start.size(), n + 1);
+  ASSERT_EQ(L.wall_start.size(), n + 1);
+  ASSERT_EQ(L.spring.size(), L.other.size());
+  ASSERT_EQ(L.wall_spring.size(), L.wall.size());
+  std::set<std::pair<std::size_t, std::size_t>> listed;
+  for (std::size_t i = 0; i < n; ++i) {
+    ASSERT_LE(L.start[i], L.start[i + 1]);
+    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+      const std::size_t j = L.other[k];
+      ASSERT_GT(j, i) << "a pair belongs to the row of its lower index";
+      ASSERT_LT(j, n);
+      if (k > L.start[i]) {
+        ASSERT_LT(L.other[k - 1], L.other[k]) << "rows sorted, no repeats";
+      }
+      EXPECT_TRUE(within_reach(w, i, j, L.skin)) << "listed pair out of reach: " << i << " " << j;
+      listed.emplace(i, j);
+    }
+  }
+  std::size_t expected = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (within_reach(w, i, j, L.skin)) {
+        ++expected;
+        EXPECT_TRUE(listed.count({i, j})) << "pair missing from the list: " << i << " " << j;
+      }
+  EXPECT_EQ(listed.size(), expected);
+
+  for (std::size_t i = 0; i < n; ++i) {
+    std::set<std::size_t> walls;
+    for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) walls.insert(L.wall[k]);
+    EXPECT_EQ(walls.size(), L.wall_start[i + 1] - L.wall_start[i]) << "wall listed twice";
+    for (std::size_t k = 0; k < w.walls.size(); ++k) {
+      const bool near = wall_gap(w.walls[k], P.pos[i]) < P.radius[i] + L.skin;
+      EXPECT_EQ(walls.count(k) == 1, near) << "grain " << i << " wall " << k;
+    }
+  }
+}
+
+TYPED_TEST(NeighbourListTest, MatchesBruteForceOnRandomClouds) {
+  constexpr int D = TypeParam::value;
+  const double side = D == 2 ? 40.0 : 14.0;
+  std::uint64_t seed = 1;
+  for (Cloud kind : {Cloud::kUniform, Cloud::kClustered, Cloud::kWithOutlier}) {
+    for (double skin_factor : {0.1, 0.4, 1.5}) {
+      SCOPED_TRACE("cloud " + std::to_string(static_cast<int>(kind)) + ", skin factor " +
+                   std::to_string(skin_factor));
+      World<D> w = random_cloud<D>(kind, 400, side, ++seed);
+      w.skin_factor = skin_factor;
+      build_neighbour_list(w);
+      EXPECT_NEAR(w.nlist.skin, skin_factor * 1.0, 0.1 * skin_factor);  // mean radius ~ 1
+      check_against_brute_force(w);
+    }
+  }
+}
+
+// The Verlet guarantee: after every grain moved less than half the skin, each pair now in
+// contact was listed at the last build.
+TYPED_TEST(NeighbourListTest, ContactsStayListedWithinHalfTheSkin) {
+  constexpr int D = TypeParam::value;
+  World<D> w = random_cloud<D>(Cloud::kUniform, 500, D == 2 ? 35.0 : 12.0, 99);
+  build_neighbour_list(w);
+  const auto& L = w.nlist;
+  std::set<std::pair<std::size_t, std::size_t>> listed;
+  for (std::size_t i = 0; i < w.particles.size(); ++i)
+    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) listed.emplace(i, L.other[k]);
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  for (auto& x : w.particles.pos) {
+    Vec<D> d;
+    for (int k = 0; k < D; ++k) d[k] = gauss(rng);
+    x += 0.4999 * L.skin * d.normalized();
+  }
+  std::size_t contacts = 0;
+  const auto& P = w.particles;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    for (std::size_t j = i + 1; j < P.size(); ++j)
+      if ((P.pos[j] - P.pos[i]).norm() < P.radius[i] + P.radius[j]) {
+        ++contacts;
+        EXPECT_TRUE(listed.count({i, j})) << i << " " << j;
+      }
+  EXPECT_GT(contacts, 50u);
+}
+
+// A rebuild keeps the spring of every pair that stays listed and starts new pairs at zero.
+TYPED_TEST(NeighbourListTest, RebuildCarriesHistory) {
+  constexpr int D = TypeParam::value;
+  World<D> w = random_cloud<D>(Cloud::kUniform, 400, D == 2 ? 35.0 : 12.0, 42);
+  build_neighbour_list(w);
+  auto code = [](std::size_t i, std::size_t j) {
+    Vec<D> v = Vec<D>::Constant(static_cast<double>(i));
+    v[1] = static_cast<double>(j);
+    return v;
+  };
+  auto& L = w.nlist;
+  std::set<std::pair<std::size_t, std::size_t>> before, before_walls;
+  for (std::size_t i = 0; i < w.particles.size(); ++i) {
+    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+      L.spring[k] = code(i, L.other[k]);
+      before.emplace(i, L.other[k]);
+    }
+    for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
+      L.wall_spring[k] = code(i, 1000 + L.wall[k]);
+      before_walls.emplace(i, L.wall[k]);
+    }
+  }
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (auto& x : w.particles.pos)
+    for (int k = 0; k < D; ++k) x[k] += 0.5 * u(rng);  // enough for pairs to come and go
+  build_neighbour_list(w);
+  std::size_t kept = 0, fresh = 0;
+  for (std::size_t i = 0; i < w.particles.size(); ++i)
+    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+      const std::size_t j = L.other[k];
+      if (before.count({i, j})) {
+        ++kept;
+        EXPECT_EQ(L.spring[k], code(i, j));
+      } else {
+        ++fresh;
+        EXPECT_EQ(L.spring[k], Vec<D>(Vec<D>::Zero()));
+      }
+    }
+  EXPECT_GT(kept, 100u);
+  EXPECT_GT(fresh, 10u);
+  std::size_t kept_walls = 0;
+  for (std::size_t i = 0; i < w.particles.size(); ++i)
+    for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
+      if (before_walls.count({i, L.wall[k]})) {
+        ++kept_walls;
+        EXPECT_EQ(L.wall_spring[k], code(i, 1000 + L.wall[k]));
+      } else {
+        EXPECT_EQ(L.wall_spring[k], Vec<D>(Vec<D>::Zero()));
+      }
+    }
+  EXPECT_GT(kept_walls, 10u);
+}
+
+}  // namespace
+}  // namespace geodem::test
