@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(g++ cmake ninja-build libeigen3-dev libtomlplusplus-dev libcli11-dev
           nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
-          python3 python3-numpy python3-matplotlib)
+          python3 python3-numpy python3-matplotlib clang-format)
 if [[ "${1:-}" == "--with-peers" ]]; then packages+=(liggghts); fi
 missing=()
 for p in "${packages[@]}"; do

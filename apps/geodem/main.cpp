@@ -28,11 +28,13 @@ Loaded load(const std::string& file, const std::vector<std::string>& overrides) 
   const toml::node* kind = l.root.get("kind");
   if (!kind) throw geodem::InputError(file, 1, "kind", "missing; expected kind = \"scene\"");
   if (!kind->is_string())
-    throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind", "expected a string");
+    throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
+                             "expected a string");
   l.kind = *kind->value<std::string>();
   if (l.kind != "scene")
-    throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
-                             "unknown or unavailable kind \"" + l.kind + "\"; this version runs: \"scene\"");
+    throw geodem::InputError(
+        file, static_cast<int>(kind->source().begin.line), "kind",
+        "unknown or unavailable kind \"" + l.kind + "\"; this version runs: \"scene\"");
   return l;
 }
 
@@ -72,7 +74,8 @@ int main(int argc, char** argv) {
   try {
     if (*plot) {
       if (!std::filesystem::exists(plot_dir + "/summary.json")) {
-        std::fprintf(stderr, "error: %s/summary.json not found: not a finished run's folder\n", plot_dir.c_str());
+        std::fprintf(stderr, "error: %s/summary.json not found: not a finished run's folder\n",
+                     plot_dir.c_str());
         return kBadInput;
       }
       return geodem::make_plots(plot_dir, false) ? kOk : kFailure;
@@ -88,7 +91,8 @@ int main(int argc, char** argv) {
         geodem::World<3> w;
         geodem::build_world(s, w);
       }
-      std::printf("%s: ok (kind = \"%s\", dimension %d)\n", scenario.c_str(), l.kind.c_str(), s.dimension);
+      std::printf("%s: ok (kind = \"%s\", dimension %d)\n", scenario.c_str(), l.kind.c_str(),
+                  s.dimension);
       return kOk;
     }
     geodem::RunOptions opt;
@@ -99,14 +103,15 @@ int main(int argc, char** argv) {
     if (s.output.plots) geodem::make_plots(out_dir, quiet);
     if (!quiet)
       std::fprintf(stderr, "done: %s steps, %.3g s simulated; outputs in %s\n",
-                   summary["results"]["steps"].dump().c_str(), summary["results"]["time"].get<double>(),
-                   out_dir.c_str());
+                   summary["results"]["steps"].dump().c_str(),
+                   summary["results"]["time"].get<double>(), out_dir.c_str());
     return kOk;
   } catch (const geodem::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kBadInput;
   } catch (const geodem::InstabilityError& e) {
-    std::fprintf(stderr, "unstable: %s\nthe outputs written so far are in %s\n", e.what(), out_dir.c_str());
+    std::fprintf(stderr, "unstable: %s\nthe outputs written so far are in %s\n", e.what(),
+                 out_dir.c_str());
     return kUnstable;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

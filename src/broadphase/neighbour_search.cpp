@@ -84,7 +84,8 @@ void renumber(World<D>& world, NeighbourList<D>& old, bool have_old,
   // Grain-wall rows keep their entries; only the rows move.
   std::vector<std::uint32_t> wstart(n + 1, 0), wall(old.wall.size());
   std::vector<Vec> wspring(old.wall.size());
-  for (std::size_t k = 0; k < n; ++k) wstart[k + 1] = wstart[k] + (old.wall_start[order[k] + 1] - old.wall_start[order[k]]);
+  for (std::size_t k = 0; k < n; ++k)
+    wstart[k + 1] = wstart[k] + (old.wall_start[order[k] + 1] - old.wall_start[order[k]]);
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint32_t src = old.wall_start[order[k]], len = wstart[k + 1] - wstart[k];
     for (std::uint32_t m = 0; m < len; ++m) {
@@ -170,9 +171,11 @@ void build_neighbour_list(World<D>& world) {
     {
       static thread_local std::vector<std::uint32_t> fill;
       fill.assign(g.cell_start.begin(), g.cell_start.end() - 1);
-      for (std::size_t i = 0; i < n; ++i) g.sorted[fill[g.cell_of[i]]++] = static_cast<std::uint32_t>(i);
+      for (std::size_t i = 0; i < n; ++i)
+        g.sorted[fill[g.cell_of[i]]++] = static_cast<std::uint32_t>(i);
     }
-    if (world.sort_interval > 0 && L.builds % static_cast<std::uint64_t>(world.sort_interval) == 0) {
+    if (world.sort_interval > 0 &&
+        L.builds % static_cast<std::uint64_t>(world.sort_interval) == 0) {
       renumber(world, old, have_old, g.sorted);
       // Grains are now in cell order: the sort is the identity.
       for (std::size_t k = 0; k < n; ++k) {
@@ -180,7 +183,8 @@ void build_neighbour_list(World<D>& world) {
       }
       std::vector<std::uint32_t> cells(n);
       for (std::size_t c = 0; c < ncells; ++c)
-        for (std::uint32_t k = g.cell_start[c]; k < g.cell_start[c + 1]; ++k) cells[k] = static_cast<std::uint32_t>(c);
+        for (std::uint32_t k = g.cell_start[c]; k < g.cell_start[c + 1]; ++k)
+          cells[k] = static_cast<std::uint32_t>(c);
       g.cell_of.swap(cells);
     }
 
@@ -217,8 +221,8 @@ void build_neighbour_list(World<D>& world) {
         Vec q;
         wall_closest(world.walls[w], xi, q, /*apply_owner_rule=*/false);
         const auto& wall = world.walls[w];
-        const double gap = wall.kind == WallKind::kPlane ? (xi - wall.point).dot(wall.normal)
-                                                         : (q - xi).norm();
+        const double gap =
+            wall.kind == WallKind::kPlane ? (xi - wall.point).dot(wall.normal) : (q - xi).norm();
         if (gap < ri) L.wall.push_back(static_cast<std::uint32_t>(w));
       }
       L.wall_start[i + 1] = static_cast<std::uint32_t>(L.wall.size());

@@ -68,10 +68,12 @@ void grain_pairs(World<D>& world) {
         note_overlap(world, i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
       const double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;  // centre-to-contact lengths
       // Surface velocities at the contact point.
-      const Vec vrel = (vel[j] - Dim<D>::cross(angvel[j], aj * nrm)) - (vi + Dim<D>::cross(wi, ai * nrm));
+      const Vec vrel =
+          (vel[j] - Dim<D>::cross(angvel[j], aj * nrm)) - (vi + Dim<D>::cross(wi, ai * nrm));
       const PairLaw& law = laws[material[j]];
       double fn;
-      const Vec f = contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt, spring[k], fn);
+      const Vec f =
+          contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt, spring[k], fn);
       force[j] += f;
       fi -= f;
       // Torques: lever arms +ai n (grain i) and -aj n (grain j); the normal part gives none.
@@ -82,7 +84,8 @@ void grain_pairs(World<D>& world) {
         st.fabric_stress += d * f.transpose();
         st.sum_force += f.norm();
         ++st.contacts;
-        if (fn > 0.0 && law.law == LawKind::kLinear) st.elastic_energy += 0.5 * fn * fn / law.linear_kn(ri, rj);
+        if (fn > 0.0 && law.law == LawKind::kLinear)
+          st.elastic_energy += 0.5 * fn * fn / law.linear_kn(ri, rj);
       }
     }
     force[i] += fi;

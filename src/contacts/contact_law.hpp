@@ -14,9 +14,9 @@
 namespace geodem {
 
 struct NormalResult {
-  double fn;       // normal force magnitude (positive: repulsive)
-  double kt;       // tangential stiffness to use this step
-  double cn;       // normal viscous coefficient (N s/m), 0 without damping
+  double fn;  // normal force magnitude (positive: repulsive)
+  double kt;  // tangential stiffness to use this step
+  double cn;  // normal viscous coefficient (N s/m), 0 without damping
 };
 
 // Radius that stands for a flat wall in the pair law of a grain of radius r. The Hertz law
@@ -28,11 +28,12 @@ inline double wall_partner_radius(const PairLaw& p, double r) {
 
 // Normal force of the pair's law; also returns the tangential stiffness.
 // inv_msum = 1/m1 + 1/m2 (m* = 1/inv_msum); r1, r2 radii (r2 = wall_partner_radius for walls).
-[[gnu::always_inline]] inline NormalResult normal_force(const PairLaw& p, double r1, double r2, double inv_msum,
-                                 double delta, double vn) {
+[[gnu::always_inline]] inline NormalResult normal_force(const PairLaw& p, double r1, double r2,
+                                                        double inv_msum, double delta, double vn) {
   if (p.law == LawKind::kLinear) {
     const double kn = p.linear_kn(r1, r2);
-    const double cn = (p.beta > 0.0 && inv_msum > 0.0) ? 2.0 * p.beta * std::sqrt(kn / inv_msum) : 0.0;
+    const double cn =
+        (p.beta > 0.0 && inv_msum > 0.0) ? 2.0 * p.beta * std::sqrt(kn / inv_msum) : 0.0;
     return {kn * delta - cn * vn, p.linear_kt(kn), cn};
   }
   // Hertz-Mindlin (no slip): Fn = 4/3 E* sqrt(R*) delta^1.5, kt = 8 G* sqrt(R* delta).
@@ -48,11 +49,10 @@ inline double wall_partner_radius(const PairLaw& p, double r) {
 // Updates the tangential spring (incremental, rotated with the contact plane) and
 // applies Coulomb's limit; returns the total force on body 2.
 template <int D>
-[[gnu::always_inline]] inline typename Dim<D>::Vec contact_force(const PairLaw& p, double r1, double r2,
-                                          double inv_msum, const typename Dim<D>::Vec& n,
-                                          double delta, const typename Dim<D>::Vec& vrel,
-                                          double dt, typename Dim<D>::Vec& spring,
-                                          double& fn_out) {
+[[gnu::always_inline]] inline typename Dim<D>::Vec contact_force(
+    const PairLaw& p, double r1, double r2, double inv_msum, const typename Dim<D>::Vec& n,
+    double delta, const typename Dim<D>::Vec& vrel, double dt, typename Dim<D>::Vec& spring,
+    double& fn_out) {
   using Vec = typename Dim<D>::Vec;
   const double vn = vrel.dot(n);
   const NormalResult nr = normal_force(p, r1, r2, inv_msum, delta, vn);

@@ -25,7 +25,7 @@ struct NeighbourList {
   std::vector<std::uint32_t> wall;
   std::vector<Vec> wall_spring;
 
-  double skin = 0.0;              // extra distance listed beyond touching (m)
+  double skin = 0.0;  // extra distance listed beyond touching (m)
   std::uint64_t builds = 0;
 
   std::size_t pair_count() const { return other.size(); }

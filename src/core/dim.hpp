@@ -17,8 +17,8 @@ struct Dim;
 template <>
 struct Dim<2> {
   using Vec = Eigen::Vector2d;
-  using Rot = double;        // angular velocity, torque about z
-  using Orient = double;     // rotation angle (rad)
+  using Rot = double;     // angular velocity, torque about z
+  using Orient = double;  // rotation angle (rad)
   using Tensor = Eigen::Matrix2d;
   static constexpr int rot_dofs = 1;
   // Per metre of out-of-plane thickness.

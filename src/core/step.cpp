@@ -55,7 +55,8 @@ bool list_expired(World<D>& world) {
   if (!expired(world.disp_bound)) return false;
   const auto& P = world.particles;
   double d2 = 0.0;
-  for (std::size_t i = 0; i < P.size(); ++i) d2 = std::max(d2, (P.pos[i] - P.pos_at_build[i]).squaredNorm());
+  for (std::size_t i = 0; i < P.size(); ++i)
+    d2 = std::max(d2, (P.pos[i] - P.pos_at_build[i]).squaredNorm());
   world.disp_bound = std::sqrt(d2);
   return expired(world.disp_bound);
 }
@@ -77,10 +78,11 @@ void check_finite(const World<D>& world) {
                     std::isfinite(Dim<D>::rot_norm2(P.angvel[i]));
     if (!ok)
       throw InstabilityError(
-          "non-finite state at step " + std::to_string(world.step) + " (t = " +
-          std::to_string(world.time) + " s) on grain " + std::to_string(P.id[i]) +
+          "non-finite state at step " + std::to_string(world.step) +
+          " (t = " + std::to_string(world.time) + " s) on grain " + std::to_string(P.id[i]) +
           "; likely cause: time step too large for the contact stiffness (dt = " +
-          std::to_string(world.dt) + " s): use time.step = \"auto\" or lower it, or lower the stiffness");
+          std::to_string(world.dt) +
+          " s): use time.step = \"auto\" or lower it, or lower the stiffness");
   }
 }
 
@@ -93,8 +95,9 @@ template <int D>
              : "wall '" + world.walls[static_cast<std::size_t>(-1 - j)].name + "'";
   throw InstabilityError(
       "overlap of " + std::to_string(static_cast<int>(100.0 * world.overlap_ratio)) +
-      " % of the radius between grain " + std::to_string(P.id[static_cast<std::size_t>(world.overlap_offender)]) +
-      " and " + partner + " at step " + std::to_string(world.step) + " (t = " + std::to_string(world.time) +
+      " % of the radius between grain " +
+      std::to_string(P.id[static_cast<std::size_t>(world.overlap_offender)]) + " and " + partner +
+      " at step " + std::to_string(world.step) + " (t = " + std::to_string(world.time) +
       " s); likely cause: time step too large (dt = " + std::to_string(world.dt) +
       " s; try time.step = \"auto\") or contact stiffness too low for the load");
 }

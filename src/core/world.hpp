@@ -37,8 +37,8 @@ enum class Stage : int {
   kCount
 };
 inline const char* stage_name(Stage s) {
-  static const char* names[] = {"neighbour search", "contact forces", "controllers",
-                                "integration", "recorders"};
+  static const char* names[] = {"neighbour search", "contact forces", "controllers", "integration",
+                                "recorders"};
   return names[static_cast<int>(s)];
 }
 
@@ -46,8 +46,8 @@ inline const char* stage_name(Stage s) {
 template <int D>
 struct ContactStats {
   typename Dim<D>::Tensor fabric_stress = Dim<D>::Tensor::Zero();  // sum of l (x) f
-  double sum_force = 0.0;       // sum of |f| over grain-grain and grain-wall contacts
-  std::size_t contacts = 0;     // grain-grain contacts
+  double sum_force = 0.0;    // sum of |f| over grain-grain and grain-wall contacts
+  std::size_t contacts = 0;  // grain-grain contacts
   std::size_t wall_contacts = 0;
   double elastic_energy = 0.0;  // normal springs only (exact for frictionless linear law)
 };
@@ -64,12 +64,12 @@ struct World {
   NeighbourList<D> nlist;
 
   Vec gravity = Vec::Zero();
-  double local_damping = 0.0;      // Cundall's non-viscous damping coefficient alpha
+  double local_damping = 0.0;  // Cundall's non-viscous damping coefficient alpha
   double dt = 0.0;
   bool auto_dt = false;
   double dt_safety = 0.8;
   int dt_update_interval = 50;
-  double skin_factor = 0.4;        // skin as a fraction of the mean radius
+  double skin_factor = 0.4;  // skin as a fraction of the mean radius
   // Every this many neighbour-list builds, grains are renumbered in cell order so
   // that neighbours sit close in memory (0: never; grain indices then stay fixed).
   int sort_interval = 0;
@@ -106,7 +106,8 @@ struct World {
     const std::size_t nm = materials.size();
     pair_laws.resize(nm * nm);
     for (std::size_t a = 0; a < nm; ++a)
-      for (std::size_t b = 0; b < nm; ++b) pair_laws[a * nm + b] = combine(materials[a], materials[b]);
+      for (std::size_t b = 0; b < nm; ++b)
+        pair_laws[a * nm + b] = combine(materials[a], materials[b]);
     wall_laws.resize(nm * walls.size());
     for (std::size_t a = 0; a < nm; ++a)
       for (std::size_t w = 0; w < walls.size(); ++w)

@@ -34,7 +34,7 @@ double critical_timestep(const World<D>& world) {
       const double delta = rs - dist;
       NormalResult nr = normal_force(law, P.radius[i], P.radius[j], 0.0, delta, 0.0);
       const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[j])
-                                                     : 1.5 * nr.fn / delta;  // dF/d(delta)
+                                                    : 1.5 * nr.fn / delta;  // dF/d(delta)
       add(i, kn, nr.kt, P.radius[i]);
       add(j, kn, nr.kt, P.radius[j]);
     }
@@ -42,15 +42,15 @@ double critical_timestep(const World<D>& world) {
       const auto& w = world.walls[L.wall[k]];
       Vec q;
       if (!wall_closest(w, P.pos[i], q)) continue;
-      const double gap = w.kind == WallKind::kPlane ? (P.pos[i] - w.point).dot(w.normal)
-                                                    : (q - P.pos[i]).norm();
+      const double gap =
+          w.kind == WallKind::kPlane ? (P.pos[i] - w.point).dot(w.normal) : (q - P.pos[i]).norm();
       const double delta = P.radius[i] - gap;
       if (delta <= 0.0) continue;
       const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
-      NormalResult nr = normal_force(law, P.radius[i], wall_partner_radius(law, P.radius[i]),
-                                     0.0, delta, 0.0);
-      const double kn =
-          law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i]) : 1.5 * nr.fn / delta;
+      NormalResult nr =
+          normal_force(law, P.radius[i], wall_partner_radius(law, P.radius[i]), 0.0, delta, 0.0);
+      const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i])
+                                                    : 1.5 * nr.fn / delta;
       add(i, kn, nr.kt, P.radius[i]);
     }
   }

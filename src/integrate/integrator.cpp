@@ -6,7 +6,9 @@ namespace geodem {
 
 namespace {
 
-inline double sign(double x) { return (x > 0.0) - (x < 0.0); }
+inline double sign(double x) {
+  return (x > 0.0) - (x < 0.0);
+}
 
 // Applies local damping to an acceleration given the half-step velocity.
 inline void damp(double& a, double v_half, double alpha, double dt) {

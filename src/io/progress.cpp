@@ -18,9 +18,8 @@ void Progress::update(const std::string& stage, std::uint64_t step, double time,
   last_ = now;
   const double eta = fraction > 1e-6 ? since_start * (1.0 - fraction) / fraction : 0.0;
   std::fprintf(stderr, "%s%s: step %llu, t = %.4g s, %3.0f %%, ETA %.0f s%s%s%s",
-               tty_ ? "\r\033[K" : "", stage.c_str(), static_cast<unsigned long long>(step),
-               time, 100.0 * fraction, eta, extra.empty() ? "" : ", ", extra.c_str(),
-               tty_ ? "" : "\n");
+               tty_ ? "\r\033[K" : "", stage.c_str(), static_cast<unsigned long long>(step), time,
+               100.0 * fraction, eta, extra.empty() ? "" : ", ", extra.c_str(), tty_ ? "" : "\n");
   std::fflush(stderr);
   drew_ = true;
 }

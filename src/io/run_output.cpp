@@ -16,7 +16,9 @@
 
 namespace geodem {
 
-const char* version() { return GEODEM_VERSION; }
+const char* version() {
+  return GEODEM_VERSION;
+}
 
 void prepare_output_dir(const std::string& dir) {
   std::error_code ec;
@@ -35,7 +37,9 @@ nlohmann::json timing_json(const World<D>& world, double wall_s, std::uint64_t s
   t["steps"] = steps;
   t["particles"] = world.particles.size();
   t["particle_steps_per_s"] =
-      wall_s > 0.0 ? static_cast<double>(steps) * static_cast<double>(world.particles.size()) / wall_s : 0.0;
+      wall_s > 0.0
+          ? static_cast<double>(steps) * static_cast<double>(world.particles.size()) / wall_s
+          : 0.0;
   t["threads"] = threads;
   nlohmann::json stages = nlohmann::json::object();
   for (int s = 0; s < static_cast<int>(Stage::kCount); ++s)
@@ -70,10 +74,12 @@ void VtkSeries<D>::write(const World<D>& world) {
 
 bool make_plots(const std::string& dir, bool quiet) {
   const char* env = std::getenv("GEODEM_PYTHON");
-  std::string python = env ? env : (std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
+  std::string python =
+      env ? env : (std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
   std::string script = std::string(GEODEM_PYTHON_DIR) + "/geodem_plot.py";
   if (!std::filesystem::exists(script)) {
-    if (!quiet) std::fprintf(stderr, "warning: plotting script %s not found; no PNG plots\n", script.c_str());
+    if (!quiet)
+      std::fprintf(stderr, "warning: plotting script %s not found; no PNG plots\n", script.c_str());
     return false;
   }
   const std::string cmd = "\"" + python + "\" \"" + script + "\" \"" + dir + "\"";

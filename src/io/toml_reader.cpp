@@ -11,13 +11,20 @@ namespace {
 
 std::string type_name(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::table: return "a table";
-    default: return "a date or time";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::table:
+      return "a table";
+    default:
+      return "a date or time";
   }
 }
 
@@ -84,7 +91,8 @@ void apply_override(toml::table& root, const std::string& assignment, const std:
       }
       if (!tb->contains(p)) {
         const bool next_is_index = std::all_of(parts[k + 1].begin(), parts[k + 1].end(), ::isdigit);
-        if (next_is_index) throw InputError(file, 0, key, "--set: '" + p + "' has no entries to index");
+        if (next_is_index)
+          throw InputError(file, 0, key, "--set: '" + p + "' has no entries to index");
         tb->insert(p, toml::table{});
       }
       cur = tb->get(p);
@@ -93,8 +101,9 @@ void apply_override(toml::table& root, const std::string& assignment, const std:
         throw InputError(file, 0, key, "--set: expected an index into the array, got '" + p + "'");
       const std::size_t idx = std::stoul(p);
       if (idx >= arr->size())
-        throw InputError(file, 0, key, "--set: index " + p + " is past the end (size " +
-                                           std::to_string(arr->size()) + ")");
+        throw InputError(
+            file, 0, key,
+            "--set: index " + p + " is past the end (size " + std::to_string(arr->size()) + ")");
       if (last) {
         arr->replace(arr->begin() + static_cast<std::ptrdiff_t>(idx), std::move(parsed));
         return;
@@ -136,7 +145,9 @@ void TableReader::record(const std::string& key, nlohmann::json v) {
   if (out_) (*out_)[key] = std::move(v);
 }
 
-bool TableReader::has(const std::string& key) const { return table_->contains(key); }
+bool TableReader::has(const std::string& key) const {
+  return table_->contains(key);
+}
 
 double TableReader::number(const std::string& key) {
   const toml::node* n = node(key);
@@ -340,7 +351,8 @@ std::vector<TableReader> TableReader::tables(const std::string& key) {
   std::vector<TableReader> v;
   if (!n) return v;
   const toml::array* arr = n->as_array();
-  if (!arr) fail(key, "expected an array of tables ([[" + dotted(key) + "]]), got " + type_name(*n));
+  if (!arr)
+    fail(key, "expected an array of tables ([[" + dotted(key) + "]]), got " + type_name(*n));
   if (out_) (*out_)[key] = nlohmann::json::array();
   for (std::size_t i = 0; i < arr->size(); ++i)
     if (!arr->get(i)->is_table()) fail(key, "expected tables ([[" + dotted(key) + "]])");
@@ -362,7 +374,8 @@ void TableReader::finish() const {
       if (d < best_d) best_d = d, best = u;
     }
     std::string msg = "unknown key";
-    if (!best.empty()) msg += "; did you mean '" + best + "'?";
+    if (!best.empty())
+      msg += "; did you mean '" + best + "'?";
     else if (!used_.empty()) {
       msg += "; known keys here:";
       for (const auto& u : used_) msg += " " + u;

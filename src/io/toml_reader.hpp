@@ -3,11 +3,11 @@
 // summary.json; keys left unread are rejected with the closest known key.
 #pragma once
 
+#include <toml++/toml.h>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
-#include <toml++/toml.h>
 #include <vector>
 
 #include "core/error.hpp"
@@ -28,7 +28,7 @@ class TableReader {
 
   bool has(const std::string& key) const;
   double number(const std::string& key, double fallback);
-  double number(const std::string& key);  // required
+  double number(const std::string& key);                     // required
   double positive(const std::string& key, double fallback);  // > 0
   double non_negative(const std::string& key, double fallback);
   double in_range(const std::string& key, double fallback, double lo, double hi);
@@ -45,7 +45,8 @@ class TableReader {
                               std::size_t min_size = 0);
   std::vector<std::vector<double>> number_rows(const std::string& key, std::size_t row_size);
   std::vector<std::string> strings(const std::string& key, std::size_t size);  // exact size
-  std::vector<std::string> strings(const std::string& key, const std::vector<std::string>& fallback);
+  std::vector<std::string> strings(const std::string& key,
+                                   const std::vector<std::string>& fallback);
 
   std::optional<TableReader> table(const std::string& key);
   std::vector<TableReader> tables(const std::string& key);  // array of tables

@@ -13,8 +13,8 @@ namespace {
 // Collects arrays for the appended-data section and their XML headers.
 class AppendedData {
  public:
-  void add(const std::string& name, const std::string& type, int components,
-           const void* data, std::size_t bytes) {
+  void add(const std::string& name, const std::string& type, int components, const void* data,
+           std::size_t bytes) {
     xml_ << "<DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
          << components << "\" format=\"appended\" offset=\"" << blob_.size() << "\"/>\n";
     const std::uint64_t n = bytes;
@@ -78,12 +78,14 @@ void write_particles_vtu(const std::string& path, const World<D>& world) {
   data.add("id", "UInt32", 1, P.id.data(), n * sizeof(std::uint32_t));
   std::vector<std::uint8_t> mat(P.material.begin(), P.material.end());
   data.add("material", "UInt8", 1, mat.data(), n);
-  body << "<PointData Scalars=\"radius\" Vectors=\"velocity\">\n" << data.take_xml() << "</PointData>\n";
+  body << "<PointData Scalars=\"radius\" Vectors=\"velocity\">\n"
+       << data.take_xml() << "</PointData>\n";
   const auto x = as3<D>(P.pos);
   data.add("Points", "Float64", 3, x.data(), x.size() * sizeof(double));
   body << "<Points>\n" << data.take_xml() << "</Points>\n";
   std::vector<std::int64_t> conn(n), offs(n);
-  for (std::size_t i = 0; i < n; ++i) conn[i] = static_cast<std::int64_t>(i), offs[i] = static_cast<std::int64_t>(i + 1);
+  for (std::size_t i = 0; i < n; ++i)
+    conn[i] = static_cast<std::int64_t>(i), offs[i] = static_cast<std::int64_t>(i + 1);
   std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
   data.add("connectivity", "Int64", 1, conn.data(), n * 8);
   data.add("offsets", "Int64", 1, offs.data(), n * 8);
@@ -157,8 +159,8 @@ void PvdIndex::write() const {
   std::ostringstream s;
   s << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
   for (const auto& e : entries_)
-    s << "  <DataSet timestep=\"" << format_number(e.time) << "\" part=\"" << e.part
-      << "\" file=\"" << e.file << "\"/>\n";
+    s << "  <DataSet timestep=\"" << format_number(e.time) << "\" part=\"" << e.part << "\" file=\""
+      << e.file << "\"/>\n";
   s << "</Collection>\n</VTKFile>\n";
   write_file_atomic(path_, s.str());
 }

@@ -22,13 +22,13 @@ struct Material {
   double density = 2600.0;
   LawKind law = LawKind::kLinear;
   // Linear law: either constant stiffnesses (kn > 0) or a contact modulus (young).
-  double kn = 0.0;          // N/m (3D), N/m per m (2D)
-  double kt = -1.0;         // < 0: kt_over_kn * kn
-  double young = 0.0;       // Pa; linear: kn = 2 E r1 r2/(r1+r2); Hertz: Young's modulus
-  double kt_over_kn = 0.5;  // linear law with modulus
-  double poisson = 0.25;    // Hertz-Mindlin
-  double friction = 0.5;    // Coulomb coefficient (tan of the friction angle)
-  double restitution = 1.0; // normal coefficient of restitution (1: no viscous damping)
+  double kn = 0.0;                  // N/m (3D), N/m per m (2D)
+  double kt = -1.0;                 // < 0: kt_over_kn * kn
+  double young = 0.0;               // Pa; linear: kn = 2 E r1 r2/(r1+r2); Hertz: Young's modulus
+  double kt_over_kn = 0.5;          // linear law with modulus
+  double poisson = 0.25;            // Hertz-Mindlin
+  double friction = 0.5;            // Coulomb coefficient (tan of the friction angle)
+  double restitution = 1.0;         // normal coefficient of restitution (1: no viscous damping)
   bool tangential_damping = false;  // tangential dashpot with the normal coefficient
 };
 
@@ -44,13 +44,13 @@ inline double damping_ratio(double e) {
 struct PairLaw {
   LawKind law = LawKind::kLinear;
   bool constant_stiffness = false;
-  double kn = 0.0, kt = 0.0;          // constant stiffness
-  double e1r = 0.0, e2r = 0.0;        // contact moduli of the two sides (modulus form)
+  double kn = 0.0, kt = 0.0;    // constant stiffness
+  double e1r = 0.0, e2r = 0.0;  // contact moduli of the two sides (modulus form)
   double kt_over_kn = 0.5;
-  double estar = 0.0, gstar = 0.0;    // Hertz-Mindlin effective moduli
-  double mu = 0.0;                    // Coulomb coefficient
-  double beta = 0.0;                  // viscous damping ratio from the restitution
-  double hertz_damp = 0.0;            // 2 sqrt(5/6) * beta_hertz (LIGGGHTS/Tsuji form)
+  double estar = 0.0, gstar = 0.0;  // Hertz-Mindlin effective moduli
+  double mu = 0.0;                  // Coulomb coefficient
+  double beta = 0.0;                // viscous damping ratio from the restitution
+  double hertz_damp = 0.0;          // 2 sqrt(5/6) * beta_hertz (LIGGGHTS/Tsuji form)
   bool tangential_damping = false;
 
   // Normal stiffness of the linear law for grain radii r1, r2.

@@ -30,11 +30,13 @@ std::uint16_t material_index(const std::vector<Material>& mats, const std::strin
 
 // Reads whitespace- or comma-separated rows; '#' starts a comment.
 template <int D, typename Add>
-void read_particle_file(const ParticleFileSpec& spec, std::size_t index, const std::string& scenario,
-                        Add&& add) {
+void read_particle_file(const ParticleFileSpec& spec, std::size_t index,
+                        const std::string& scenario, Add&& add) {
   using Vec = typename Dim<D>::Vec;
   std::ifstream in(spec.path);
-  if (!in) throw InputError(scenario, 0, "particle_files." + std::to_string(index) + ".file", "cannot read " + spec.path);
+  if (!in)
+    throw InputError(scenario, 0, "particle_files." + std::to_string(index) + ".file",
+                     "cannot read " + spec.path);
   std::string line;
   int lineno = 0;
   std::vector<double> values;
@@ -54,18 +56,26 @@ void read_particle_file(const ParticleFileSpec& spec, std::size_t index, const s
     if (values.empty()) continue;
     if (values.size() != spec.columns.size())
       throw InputError(spec.path, lineno, "",
-                       "expected " + std::to_string(spec.columns.size()) + " columns, got " + std::to_string(values.size()));
+                       "expected " + std::to_string(spec.columns.size()) + " columns, got " +
+                           std::to_string(values.size()));
     Vec x = Vec::Zero(), v = Vec::Zero();
     double r = spec.radius;
     for (std::size_t c = 0; c < values.size(); ++c) {
       const std::string& name = spec.columns[c];
-      if (name == "x") x[0] = values[c];
-      else if (name == "y") x[1] = values[c];
-      else if (name == "z" && D == 3) x[D - 1] = values[c];
-      else if (name == "vx") v[0] = values[c];
-      else if (name == "vy") v[1] = values[c];
-      else if (name == "vz" && D == 3) v[D - 1] = values[c];
-      else if (name == "radius") r = values[c];
+      if (name == "x")
+        x[0] = values[c];
+      else if (name == "y")
+        x[1] = values[c];
+      else if (name == "z" && D == 3)
+        x[D - 1] = values[c];
+      else if (name == "vx")
+        v[0] = values[c];
+      else if (name == "vy")
+        v[1] = values[c];
+      else if (name == "vz" && D == 3)
+        v[D - 1] = values[c];
+      else if (name == "radius")
+        r = values[c];
     }
     if (!(r > 0.0)) throw InputError(spec.path, lineno, "", "radius must be positive");
     add(x, r, v);
@@ -132,7 +142,8 @@ void build_world(const SceneSettings& s, World<D>& world) {
       if (p.restitution) law->beta = damping_ratio(*p.restitution);
       if (p.restitution && law->law == LawKind::kHertz)
         law->hertz_damp = 2.0 * std::sqrt(5.0 / 6.0) * law->beta;
-      if (p.kn) law->constant_stiffness = true, law->kn = *p.kn, law->kt = p.kt.value_or(0.5 * *p.kn);
+      if (p.kn)
+        law->constant_stiffness = true, law->kn = *p.kn, law->kt = p.kt.value_or(0.5 * *p.kn);
     }
   }
 

@@ -20,8 +20,8 @@ double mean_radius_for_porosity(double volume, std::size_t count, double porosit
 
 template <int D>
 std::vector<Sphere<D>> random_cloud(const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
-                                    std::size_t count, double mean_radius, double fuzz,
-                                    Random& rng, const std::vector<Sphere<D>>& existing) {
+                                    std::size_t count, double mean_radius, double fuzz, Random& rng,
+                                    const std::vector<Sphere<D>>& existing) {
   using Vec = typename Dim<D>::Vec;
   std::vector<double> radii(count);
   for (auto& r : radii) r = mean_radius * (1.0 + fuzz * (2.0 * rng.uniform() - 1.0));
@@ -46,7 +46,8 @@ std::vector<Sphere<D>> random_cloud(const typename Dim<D>::Vec& lo, const typena
     return static_cast<std::size_t>((c[2] * dims[1] + c[1]) * dims[0] + c[0]);
   };
   std::array<int, 3> c{};
-  for (std::size_t i = 0; i < all.size(); ++i) cells[cell_of(all[i].centre, c)].push_back(static_cast<std::uint32_t>(i));
+  for (std::size_t i = 0; i < all.size(); ++i)
+    cells[cell_of(all[i].centre, c)].push_back(static_cast<std::uint32_t>(i));
 
   const int zr = D == 3 ? 1 : 0;
   const int max_tries = 2000;
@@ -65,8 +66,10 @@ std::vector<Sphere<D>> random_cloud(const typename Dim<D>::Vec& lo, const typena
         for (int dy = -1; dy <= 1 && free; ++dy)
           for (int dx = -1; dx <= 1 && free; ++dx) {
             const int cx = c[0] + dx, cy = c[1] + dy, cz = c[2] + dz;
-            if (cx < 0 || cy < 0 || cz < 0 || cx >= dims[0] || cy >= dims[1] || cz >= dims[2]) continue;
-            for (std::uint32_t j : cells[(static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0] + cx]) {
+            if (cx < 0 || cy < 0 || cz < 0 || cx >= dims[0] || cy >= dims[1] || cz >= dims[2])
+              continue;
+            for (std::uint32_t j :
+                 cells[(static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0] + cx]) {
               const double rs = r + all[j].radius;
               if ((all[j].centre - x).squaredNorm() < rs * rs) {
                 free = false;
@@ -87,13 +90,16 @@ std::vector<Sphere<D>> random_cloud(const typename Dim<D>::Vec& lo, const typena
                                " tries: the cloud is too dense; enlarge the box, or lower the "
                                "count or the radius (random placement jams near 30-38 % solid)");
   }
-  return std::vector<Sphere<D>>(all.begin() + static_cast<std::ptrdiff_t>(existing.size()), all.end());
+  return std::vector<Sphere<D>>(all.begin() + static_cast<std::ptrdiff_t>(existing.size()),
+                                all.end());
 }
 
 template std::vector<Sphere<2>> random_cloud<2>(const Dim<2>::Vec&, const Dim<2>::Vec&, std::size_t,
-                                                double, double, Random&, const std::vector<Sphere<2>>&);
+                                                double, double, Random&,
+                                                const std::vector<Sphere<2>>&);
 template std::vector<Sphere<3>> random_cloud<3>(const Dim<3>::Vec&, const Dim<3>::Vec&, std::size_t,
-                                                double, double, Random&, const std::vector<Sphere<3>>&);
+                                                double, double, Random&,
+                                                const std::vector<Sphere<3>>&);
 template double mean_radius_for_porosity<2>(double, std::size_t, double, double);
 template double mean_radius_for_porosity<3>(double, std::size_t, double, double);
 

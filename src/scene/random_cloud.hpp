@@ -19,11 +19,12 @@ struct Sphere {
 // each other nor `existing`. Throws std::runtime_error when the box is too full.
 template <int D>
 std::vector<Sphere<D>> random_cloud(const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
-                                    std::size_t count, double mean_radius, double fuzz,
-                                    Random& rng, const std::vector<Sphere<D>>& existing = {});
+                                    std::size_t count, double mean_radius, double fuzz, Random& rng,
+                                    const std::vector<Sphere<D>>& existing = {});
 
 // Mean radius that gives `porosity` for `count` grains with radii mean*(1 +- fuzz) in a
-// box of volume `volume`: uses E[r^3] = mean^3 (1 + fuzz^2) (3D), E[r^2] = mean^2 (1 + fuzz^2/3) (2D).
+// box of volume `volume`: uses E[r^3] = mean^3 (1 + fuzz^2) (3D), E[r^2] = mean^2 (1 + fuzz^2/3)
+// (2D).
 template <int D>
 double mean_radius_for_porosity(double volume, std::size_t count, double porosity, double fuzz);
 

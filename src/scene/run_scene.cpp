@@ -15,7 +15,9 @@ namespace geodem {
 
 namespace {
 
-const char* axis(int k) { return k == 0 ? "x" : (k == 1 ? "y" : "z"); }
+const char* axis(int k) {
+  return k == 0 ? "x" : (k == 1 ? "y" : "z");
+}
 
 template <int D>
 Box<D> grains_box(const World<D>& w) {
@@ -39,12 +41,14 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   std::optional<Box<D>> box;
   if (s.output.measure_box) {
     Box<D> b;
-    for (int k = 0; k < D; ++k) b.lo[k] = s.output.measure_box->first[k], b.hi[k] = s.output.measure_box->second[k];
+    for (int k = 0; k < D; ++k)
+      b.lo[k] = s.output.measure_box->first[k], b.hi[k] = s.output.measure_box->second[k];
     box = b;
   }
 
-  std::vector<std::string> cols = {"step", "time", "wall_s", "dt", "kinetic_energy", "unbalanced",
-                                   "coordination", "contacts", "wall_contacts"};
+  std::vector<std::string> cols = {"step",         "time",           "wall_s",
+                                   "dt",           "kinetic_energy", "unbalanced",
+                                   "coordination", "contacts",       "wall_contacts"};
   if (box) cols.push_back("porosity");
   for (int a = 0; a < D; ++a)
     for (int b = a; b < D; ++b) cols.push_back(std::string("stress_") + axis(a) + axis(b));
@@ -59,8 +63,13 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   const auto t0 = Clock::now();
   auto record = [&]() {
     const double wall_now = std::chrono::duration<double>(Clock::now() - t0).count();
-    std::vector<double> row = {static_cast<double>(w.step), w.time, wall_now, w.dt, kinetic_energy(w),
-                               unbalanced_force_ratio(w), coordination_number(w),
+    std::vector<double> row = {static_cast<double>(w.step),
+                               w.time,
+                               wall_now,
+                               w.dt,
+                               kinetic_energy(w),
+                               unbalanced_force_ratio(w),
+                               coordination_number(w),
                                static_cast<double>(w.stats.contacts),
                                static_cast<double>(w.stats.wall_contacts)};
     const Box<D> vb = box ? *box : grains_box(w);
@@ -80,8 +89,10 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   std::string message;
   update_timestep(w);
   if (s.output.vtk) vtk.write(w);
-  const double duration = s.time.duration > 0.0 ? s.time.duration : std::numeric_limits<double>::infinity();
-  const std::uint64_t max_steps = s.time.steps > 0 ? s.time.steps : std::numeric_limits<std::uint64_t>::max();
+  const double duration =
+      s.time.duration > 0.0 ? s.time.duration : std::numeric_limits<double>::infinity();
+  const std::uint64_t max_steps =
+      s.time.steps > 0 ? s.time.steps : std::numeric_limits<std::uint64_t>::max();
   double unbalanced = std::numeric_limits<double>::quiet_NaN();
   try {
     while (w.step < max_steps && w.time < duration * (1.0 - 1e-12)) {
@@ -91,12 +102,15 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
       if (w.measure_this_step) {
         record();
         unbalanced = unbalanced_force_ratio(w);
-        const double fraction = std::max(w.time / duration, static_cast<double>(w.step) / static_cast<double>(max_steps));
+        const double fraction = std::max(
+            w.time / duration, static_cast<double>(w.step) / static_cast<double>(max_steps));
         progress.update("scene", w.step, w.time, std::min(fraction, 1.0),
                         "unbalanced " + format_number(unbalanced));
-        if (w.time >= s.stop.min_time && (s.stop.unbalanced_below > 0.0 || s.stop.kinetic_below > 0.0)) {
+        if (w.time >= s.stop.min_time &&
+            (s.stop.unbalanced_below > 0.0 || s.stop.kinetic_below > 0.0)) {
           const bool ub_ok = s.stop.unbalanced_below <= 0.0 || unbalanced < s.stop.unbalanced_below;
-          const bool ke_ok = s.stop.kinetic_below <= 0.0 || kinetic_energy(w) < s.stop.kinetic_below;
+          const bool ke_ok =
+              s.stop.kinetic_below <= 0.0 || kinetic_energy(w) < s.stop.kinetic_below;
           if (ub_ok && ke_ok) {
             stop_reason = "at rest (stop criteria met)";
             break;
@@ -112,7 +126,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   }
   progress.finish();
   const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  if (s.output.vtk && status == "completed" && (s.output.vtk_every == 0 || w.step % s.output.vtk_every != 0))
+  if (s.output.vtk && status == "completed" &&
+      (s.output.vtk_every == 0 || w.step % s.output.vtk_every != 0))
     vtk.write(w);
 
   nlohmann::json results;
@@ -124,7 +139,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   results["particles"] = w.particles.size();
   if (status == "completed") {
     results["kinetic_energy"] = kinetic_energy(w);
-    results["unbalanced"] = std::isfinite(unbalanced) ? nlohmann::json(unbalanced) : nlohmann::json();
+    results["unbalanced"] =
+        std::isfinite(unbalanced) ? nlohmann::json(unbalanced) : nlohmann::json();
     results["coordination"] = coordination_number(w);
     if (box) results["porosity"] = porosity_in_box(w, *box);
   }
@@ -143,7 +159,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     nlohmann::json f = nlohmann::json::array();
     for (int k = 0; k < D; ++k) f.push_back(wall.force[k]);
     walls[wall.name] = {{"force", f}};
-    if (wall.kind == WallKind::kPlane) walls[wall.name]["normal_force"] = -wall.force.dot(wall.normal);
+    if (wall.kind == WallKind::kPlane)
+      walls[wall.name]["normal_force"] = -wall.force.dot(wall.normal);
     if (wall.area > 0.0) walls[wall.name]["normal_stress"] = wall.normal_stress();
   }
   results["walls"] = walls;

@@ -127,7 +127,8 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
   auto vec = [&](TableReader& t, const std::string& key, const List& fallback) {
     List v = t.numbers(key, fallback, D);
     if (v.size() != D)
-      t.fail(key, "expected " + std::to_string(D) + " components for dimension " + std::to_string(D));
+      t.fail(key,
+             "expected " + std::to_string(D) + " components for dimension " + std::to_string(D));
     return v;
   };
   const List zero(D, 0.0);
@@ -201,12 +202,14 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     f.path = p.is_absolute() ? name : (std::filesystem::path(file).parent_path() / p).string();
     if (!std::filesystem::exists(f.path)) t.fail("file", "file not found: " + f.path);
     const std::vector<std::string> fallback =
-        D == 3 ? std::vector<std::string>{"x", "y", "z", "radius"} : std::vector<std::string>{"x", "y", "radius"};
+        D == 3 ? std::vector<std::string>{"x", "y", "z", "radius"}
+               : std::vector<std::string>{"x", "y", "radius"};
     f.columns = t.strings("columns", fallback);
     const std::set<std::string> known = {"id", "x", "y", "z", "radius", "vx", "vy", "vz", "_"};
     std::set<std::string> seen;
     for (const auto& c : f.columns) {
-      if (!known.count(c)) t.fail("columns", "unknown column '" + c + "'; known: id x y z radius vx vy vz _");
+      if (!known.count(c))
+        t.fail("columns", "unknown column '" + c + "'; known: id x y z radius vx vy vz _");
       if (c != "_" && !seen.insert(c).second) t.fail("columns", "column '" + c + "' given twice");
     }
     for (const char* c : {"x", "y", "z"})
@@ -224,7 +227,8 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     r.fail("particles", "the scene has no grains: add [[particles]] or [[clouds]]");
 
   if (auto t = r.table("output")) {
-    s.output.history_every = static_cast<std::uint64_t>(t->integer("history_every", 1000, 1, (1LL << 50)));
+    s.output.history_every =
+        static_cast<std::uint64_t>(t->integer("history_every", 1000, 1, (1LL << 50)));
     s.output.vtk_every = static_cast<std::uint64_t>(t->integer("vtk_every", 0, 0, (1LL << 50)));
     s.output.vtk = t->boolean("vtk", true);
     s.output.plots = t->boolean("plots", true);

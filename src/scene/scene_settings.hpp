@@ -39,7 +39,7 @@ struct ParticleSpec {
 struct CloudSpec {
   List lo, hi, velocity;
   std::size_t count = 0;
-  double radius = 0.0;     // mean radius; 0: from porosity
+  double radius = 0.0;  // mean radius; 0: from porosity
   double porosity = 0.0;
   double fuzz = 0.0;
   std::string material;
@@ -84,8 +84,8 @@ struct SceneSettings {
   List gravity;
   double local_damping = 0.0;
   double max_overlap = 0.5;  // stop as unstable beyond this overlap / smaller radius
-  double skin = 0.4;        // Verlet skin, fraction of the mean radius
-  int sort_interval = 10;   // renumber grains in cell order every N list builds
+  double skin = 0.4;         // Verlet skin, fraction of the mean radius
+  int sort_interval = 10;    // renumber grains in cell order every N list builds
   std::vector<Material> materials;
   std::vector<PairSpec> pairs;
   std::vector<WallSpec> walls;

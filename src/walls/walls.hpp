@@ -27,10 +27,10 @@ struct Wall {
   // Segments of one polyline share vertices; a grain touching a shared vertex
   // is counted by one segment only (the one that starts there).
   bool owns_end_vertex = true;
-  double area = 0.0;         // for the stress on the wall (m^2 in 3D, m in 2D); 0: unknown
+  double area = 0.0;  // for the stress on the wall (m^2 in 3D, m in 2D); 0: unknown
 
   // Results of the current step.
-  Vec force = Vec::Zero();   // force exerted by the grains on the wall
+  Vec force = Vec::Zero();         // force exerted by the grains on the wall
   Vec displacement = Vec::Zero();  // since the neighbour list was built
 
   double normal_stress() const { return area > 0.0 ? -force.dot(normal) / area : 0.0; }

@@ -169,7 +169,8 @@ TYPED_TEST(ContactHistory, RenumberingKeepsEverySpring) {
     worst = std::max(worst, (reference.particles.force[i] - w.particles.force[j]).norm());
     scale = std::max(scale, reference.particles.force[i].norm());
   }
-  report(std::to_string(D) + "D renumbering: largest force difference / largest force", worst / scale);
+  report(std::to_string(D) + "D renumbering: largest force difference / largest force",
+         worst / scale);
   EXPECT_LT(worst, 1e-12 * scale);
 }
 
