@@ -40,62 +40,65 @@ struct Grid {
 };
 
 // Renumbers grains in the order `order` (new k = old order[k]) and rewrites the
-// old neighbour rows in the new numbering so their history merges as usual.
+// old neighbour rows in the new numbering so their history merges as usual. The
+// rewritten rows are assembled in `scratch` (the list being rebuilt, whose buffers
+// are free at this point) and swapped into `old`: no extra copy of the list is kept.
 template <int D>
-void renumber(World<D>& world, NeighbourList<D>& old, bool have_old,
+void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch, bool have_old,
               const std::vector<std::uint32_t>& order) {
   using Vec = typename Dim<D>::Vec;
   const std::size_t n = order.size();
   world.particles.permute(order);
   if (!have_old) return;
-  static thread_local std::vector<std::uint32_t> inv, count;
+  static thread_local std::vector<std::uint32_t> inv, fill;
   inv.resize(n);
   for (std::size_t k = 0; k < n; ++k) inv[order[k]] = static_cast<std::uint32_t>(k);
   // Grain-grain rows: each pair goes to the row of its new lower index; the spring
   // is the force on the higher-index grain, so it changes sign when the roles swap.
-  struct Entry {
-    std::uint32_t other;
-    Vec spring;
-  };
-  static thread_local std::vector<Entry> entries;
-  count.assign(n + 1, 0);
+  auto& start = scratch.start;
+  start.assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
     for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k)
-      ++count[std::min(inv[i], inv[old.other[k]]) + 1];
-  for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
-  entries.resize(old.other.size());
-  std::vector<std::uint32_t> fill(count.begin(), count.end() - 1);
+      ++start[std::min(inv[i], inv[old.other[k]]) + 1];
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  scratch.other.resize(old.other.size());
+  scratch.spring.resize(old.other.size());
+  fill.assign(start.begin(), start.end() - 1);
   for (std::size_t i = 0; i < n; ++i)
     for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k) {
       const std::uint32_t a = inv[i], b = inv[old.other[k]];
-      if (a < b)
-        entries[fill[a]++] = {b, old.spring[k]};
-      else
-        entries[fill[b]++] = {a, -old.spring[k]};
+      const std::uint32_t row = std::min(a, b), slot = fill[row]++;
+      scratch.other[slot] = std::max(a, b);
+      scratch.spring[slot] = a < b ? old.spring[k] : Vec(-old.spring[k]);
     }
+  // Rows are short: insertion sort by partner, moving the spring along.
   for (std::size_t i = 0; i < n; ++i)
-    std::sort(entries.begin() + count[i], entries.begin() + count[i + 1],
-              [](const Entry& x, const Entry& y) { return x.other < y.other; });
-  old.start.assign(count.begin(), count.end());
-  for (std::size_t k = 0; k < entries.size(); ++k) {
-    old.other[k] = entries[k].other;
-    old.spring[k] = entries[k].spring;
-  }
+    for (std::uint32_t x = start[i] + 1; x < start[i + 1]; ++x)
+      for (std::uint32_t y = x; y > start[i] && scratch.other[y - 1] > scratch.other[y]; --y) {
+        std::swap(scratch.other[y - 1], scratch.other[y]);
+        std::swap(scratch.spring[y - 1], scratch.spring[y]);
+      }
   // Grain-wall rows keep their entries; only the rows move.
-  std::vector<std::uint32_t> wstart(n + 1, 0), wall(old.wall.size());
-  std::vector<Vec> wspring(old.wall.size());
+  scratch.wall_start.assign(n + 1, 0);
+  scratch.wall.resize(old.wall.size());
+  scratch.wall_spring.resize(old.wall.size());
   for (std::size_t k = 0; k < n; ++k)
-    wstart[k + 1] = wstart[k] + (old.wall_start[order[k] + 1] - old.wall_start[order[k]]);
+    scratch.wall_start[k + 1] =
+        scratch.wall_start[k] + (old.wall_start[order[k] + 1] - old.wall_start[order[k]]);
   for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t src = old.wall_start[order[k]], len = wstart[k + 1] - wstart[k];
+    const std::uint32_t src = old.wall_start[order[k]];
+    const std::uint32_t len = scratch.wall_start[k + 1] - scratch.wall_start[k];
     for (std::uint32_t m = 0; m < len; ++m) {
-      wall[wstart[k] + m] = old.wall[src + m];
-      wspring[wstart[k] + m] = old.wall_spring[src + m];
+      scratch.wall[scratch.wall_start[k] + m] = old.wall[src + m];
+      scratch.wall_spring[scratch.wall_start[k] + m] = old.wall_spring[src + m];
     }
   }
-  old.wall_start.swap(wstart);
-  old.wall.swap(wall);
-  old.wall_spring.swap(wspring);
+  std::swap(old.start, scratch.start);
+  std::swap(old.other, scratch.other);
+  std::swap(old.spring, scratch.spring);
+  std::swap(old.wall_start, scratch.wall_start);
+  std::swap(old.wall, scratch.wall);
+  std::swap(old.wall_spring, scratch.wall_spring);
 }
 
 }  // namespace
@@ -127,12 +130,15 @@ void build_neighbour_list(World<D>& world) {
   std::swap(old.wall_spring, L.wall_spring);
   const bool have_old = old.start.size() == n + 1;
 
-  L.start.assign(n + 1, 0);
-  L.other.clear();
-  L.spring.clear();
-  L.wall_start.assign(n + 1, 0);
-  L.wall.clear();
-  L.wall_spring.clear();
+  auto reset_rows = [&] {
+    L.start.assign(n + 1, 0);
+    L.other.clear();
+    L.spring.clear();
+    L.wall_start.assign(n + 1, 0);
+    L.wall.clear();
+    L.wall_spring.clear();
+  };
+  reset_rows();
 
   if (n > 0) {
     // Grid bounds: the grains' bounding box; far outliers are clamped to the edge cells.
@@ -176,7 +182,8 @@ void build_neighbour_list(World<D>& world) {
     }
     if (world.sort_interval > 0 &&
         L.builds % static_cast<std::uint64_t>(world.sort_interval) == 0) {
-      renumber(world, old, have_old, g.sorted);
+      renumber(world, old, L, have_old, g.sorted);
+      reset_rows();
       // Grains are now in cell order: the sort is the identity.
       for (std::size_t k = 0; k < n; ++k) {
         g.sorted[k] = static_cast<std::uint32_t>(k);

@@ -28,6 +28,17 @@ std::uint16_t material_index(const std::vector<Material>& mats, const std::strin
   throw std::logic_error("unknown material " + name);  // names were checked when reading
 }
 
+// Number of rows with data (not blank, not only a comment) in a text file.
+std::size_t count_data_rows(const std::string& path) {
+  std::ifstream in(path);
+  std::size_t rows = 0;
+  for (std::string line; std::getline(in, line);) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first != std::string::npos && line[first] != '#') ++rows;
+  }
+  return rows;
+}
+
 // Reads whitespace- or comma-separated rows; '#' starts a comment.
 template <int D, typename Add>
 void read_particle_file(const ParticleFileSpec& spec, std::size_t index,
@@ -147,7 +158,14 @@ void build_world(const SceneSettings& s, World<D>& world) {
     }
   }
 
+  // Reserve the grain arrays once: growing them by doubling would leave up to twice the
+  // memory they need.
+  std::size_t total = s.particles.size();
+  for (const auto& c : s.clouds) total += c.count;
+  for (const auto& f : s.particle_files) total += count_data_rows(f.path);
+  world.particles.reserve(total);
   std::vector<Sphere<D>> placed;
+  placed.reserve(total);
   for (const auto& p : s.particles) {
     const auto m = material_index(s.materials, p.material);
     typename Dim<D>::Rot w;
@@ -181,7 +199,6 @@ void build_world(const SceneSettings& s, World<D>& world) {
       throw InputError(s.file, 0, "clouds." + std::to_string(c), e.what());
     }
     const auto m = material_index(s.materials, cl.material);
-    world.particles.reserve(world.particles.size() + grains.size());
     for (const auto& g : grains) {
       world.particles.add(g.centre, g.radius, s.materials[m].density, m, to_vec<D>(cl.velocity));
       placed.push_back(g);
