@@ -82,7 +82,64 @@ def plot_scene(out, summary, h):
     return made
 
 
-PLOTTERS = {"scene": plot_scene}
+def plot_triaxial(out, summary, h):
+    """q and volumetric strain against axial strain, one curve per confining stress;
+    the Mohr circles at the peaks and the fitted envelope with two tests or more."""
+    results = summary.get("results", {})
+    tests = results.get("tests", [])
+    ids = sorted(set(int(t) for t in h["test"]))
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6.4, 7.0), sharex=True)
+    for t in ids:
+        rows = [i for i, v in enumerate(h["test"]) if int(v) == t]
+        ea = [100 * h["axial_strain"][i] for i in rows]
+        label = f"sigma3 = {tests[t]['confining_stress'] / 1e3:g} kPa" if t < len(tests) else f"test {t}"
+        ax1.plot(ea, [h["q"][i] / 1e3 for i in rows], label=label)
+        ax2.plot(ea, [100 * h["volumetric_strain"][i] for i in rows], label=label)
+        if t < len(tests):
+            ax1.plot(100 * tests[t]["axial_strain_at_peak"], tests[t]["peak_q"] / 1e3, "k.", ms=8)
+    ax1.set_ylabel("q = sigma1 - sigma3 (kPa)")
+    ax1.legend(fontsize=8)
+    ax1.grid(alpha=0.3)
+    ax2.set_xlabel("axial strain (%)")
+    ax2.set_ylabel("volumetric strain (%, + contraction)")
+    ax2.invert_yaxis()
+    ax2.grid(alpha=0.3)
+    dim = summary.get("scenario", {}).get("dimension", 3)
+    fig.suptitle(("Triaxial" if dim == 3 else "Biaxial") + " compression")
+    fig.tight_layout()
+    fig.savefig(out / "stress_strain.png", dpi=120)
+    plt.close(fig)
+    made = ["stress_strain.png"]
+    mc = results.get("mohr_coulomb")
+    if mc and tests:
+        fig, ax = plt.subplots(figsize=(6.4, 4.2))
+        smax = 0.0
+        for t in tests:
+            s3 = t["confining_stress"]
+            s1 = s3 + t["peak_q"]
+            c, r = 0.5 * (s1 + s3), 0.5 * (s1 - s3)
+            xs = [c + r * math.cos(math.pi * k / 90) for k in range(91)]
+            ys = [r * math.sin(math.pi * k / 90) for k in range(91)]
+            ax.plot([x / 1e3 for x in xs], [y / 1e3 for y in ys])
+            smax = max(smax, s1)
+        tanp = math.tan(math.radians(mc["phi_deg"]))
+        ax.plot([0, smax / 1e3], [mc["cohesion"] / 1e3, (mc["cohesion"] + tanp * smax) / 1e3], "k--",
+                label=f"c = {mc['cohesion'] / 1e3:.2f} kPa, phi = {mc['phi_deg']:.1f} deg")
+        ax.set_xlabel("normal stress (kPa)")
+        ax.set_ylabel("shear stress (kPa)")
+        ax.set_aspect("equal")
+        ax.set_xlim(left=0)
+        ax.set_ylim(bottom=0)
+        ax.legend(fontsize=8)
+        ax.set_title("Mohr circles at the peaks")
+        fig.tight_layout()
+        fig.savefig(out / "mohr_coulomb.png", dpi=120)
+        plt.close(fig)
+        made.append("mohr_coulomb.png")
+    return made
+
+
+PLOTTERS = {"scene": plot_scene, "triaxial": plot_triaxial}
 
 
 def main(argv):

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "io/run_output.hpp"
 #include "io/toml_reader.hpp"
+#include "lab/run_triaxial.hpp"
 #include "scene/build_scene.hpp"
 #include "scene/run_scene.hpp"
 
@@ -31,10 +32,10 @@ Loaded load(const std::string& file, const std::vector<std::string>& overrides) 
     throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
                              "expected a string");
   l.kind = *kind->value<std::string>();
-  if (l.kind != "scene")
-    throw geodem::InputError(
-        file, static_cast<int>(kind->source().begin.line), "kind",
-        "unknown or unavailable kind \"" + l.kind + "\"; this version runs: \"scene\"");
+  if (l.kind != "scene" && l.kind != "triaxial")
+    throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
+                             "unknown or unavailable kind \"" + l.kind +
+                                 "\"; this version runs: \"scene\", \"triaxial\"");
   return l;
 }
 
@@ -81,6 +82,21 @@ int main(int argc, char** argv) {
       return geodem::make_plots(plot_dir, false) ? kOk : kFailure;
     }
     Loaded l = load(scenario, overrides);
+    geodem::RunOptions opt;
+    opt.out_dir = out_dir;
+    opt.quiet = quiet;
+    opt.threads = threads;
+    if (l.kind == "triaxial") {
+      const geodem::TriaxialSettings t = geodem::read_triaxial(l.root, scenario);
+      if (*check) {
+        std::printf("%s: ok (kind = \"triaxial\", dimension %d)\n", scenario.c_str(), t.dimension);
+        return kOk;
+      }
+      geodem::run_triaxial(t, opt);
+      if (t.plots) geodem::make_plots(out_dir, quiet);
+      if (!quiet) std::fprintf(stderr, "done: outputs in %s\n", out_dir.c_str());
+      return kOk;
+    }
     const geodem::SceneSettings s = geodem::read_scene(l.root, scenario);
     if (*check) {
       // Build the scene too: random clouds that cannot be placed are input errors.
@@ -95,10 +111,6 @@ int main(int argc, char** argv) {
                   s.dimension);
       return kOk;
     }
-    geodem::RunOptions opt;
-    opt.out_dir = out_dir;
-    opt.quiet = quiet;
-    opt.threads = threads;
     const auto summary = geodem::run_scene(s, opt);
     if (s.output.plots) geodem::make_plots(out_dir, quiet);
     if (!quiet)

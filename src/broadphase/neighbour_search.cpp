@@ -93,12 +93,7 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
       scratch.wall_spring[scratch.wall_start[k] + m] = old.wall_spring[src + m];
     }
   }
-  std::swap(old.start, scratch.start);
-  std::swap(old.other, scratch.other);
-  std::swap(old.spring, scratch.spring);
-  std::swap(old.wall_start, scratch.wall_start);
-  std::swap(old.wall, scratch.wall);
-  std::swap(old.wall_spring, scratch.wall_spring);
+  old.swap_rows(scratch);
 }
 
 }  // namespace
@@ -122,12 +117,7 @@ void build_neighbour_list(World<D>& world) {
 
   // Keep the old rows to merge their history.
   static thread_local NeighbourList<D> old;
-  std::swap(old.start, L.start);
-  std::swap(old.other, L.other);
-  std::swap(old.spring, L.spring);
-  std::swap(old.wall_start, L.wall_start);
-  std::swap(old.wall, L.wall);
-  std::swap(old.wall_spring, L.wall_spring);
+  old.swap_rows(L);
   const bool have_old = old.start.size() == n + 1;
 
   auto reset_rows = [&] {
@@ -257,6 +247,7 @@ void build_neighbour_list(World<D>& world) {
   for (std::size_t i = 0; i < n; ++i) P.pos_at_build[i] = P.pos[i];
   for (auto& w : world.walls) w.displacement = Vec::Zero();
   world.disp_bound = 0.0;
+  world.radius_growth = 0.0;
   world.rebuild_needed = false;
   ++L.builds;
 }

@@ -139,6 +139,7 @@ void grain_walls(World<D>& world) {
       P.force[i] -= f;
       P.torque[i] -= a * Dim<D>::cross(nrm, f);
       wall.force += f;
+      wall.stiffness += law.law == LawKind::kLinear ? law.linear_kn(ri, ri) : 1.5 * fn / delta;
       if constexpr (Measure) {
         st.fabric_stress += (a * nrm) * f.transpose();
         st.sum_force += f.norm();
@@ -154,7 +155,10 @@ void grain_walls(World<D>& world) {
 
 template <int D>
 void compute_contact_forces(World<D>& world) {
-  for (auto& w : world.walls) w.force = Dim<D>::Vec::Zero();
+  for (auto& w : world.walls) {
+    w.force = Dim<D>::Vec::Zero();
+    w.stiffness = 0.0;
+  }
   if (world.measure_this_step) {
     world.stats = ContactStats<D>{};
     grain_pairs<D, true>(world);

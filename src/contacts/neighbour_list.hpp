@@ -29,6 +29,11 @@ struct NeighbourList {
   std::uint64_t builds = 0;
 
   std::size_t pair_count() const { return other.size(); }
+  // Exchanges the rows (not the settings) with another list.
+  void swap_rows(NeighbourList& o) {
+    start.swap(o.start), other.swap(o.other), spring.swap(o.spring);
+    wall_start.swap(o.wall_start), wall.swap(o.wall), wall_spring.swap(o.wall_spring);
+  }
   std::size_t bytes() const {
     return start.capacity() * 4 + other.capacity() * 4 + spring.capacity() * sizeof(Vec) +
            wall_start.capacity() * 4 + wall.capacity() * 4 + wall_spring.capacity() * sizeof(Vec);

@@ -52,13 +52,13 @@ bool list_expired(World<D>& world) {
   auto expired = [&](double d) {
     return 2.0 * d > world.nlist.skin || d + wall_disp > world.nlist.skin;
   };
-  if (!expired(world.disp_bound)) return false;
+  if (!expired(world.disp_bound + world.radius_growth)) return false;
   const auto& P = world.particles;
   double d2 = 0.0;
   for (std::size_t i = 0; i < P.size(); ++i)
     d2 = std::max(d2, (P.pos[i] - P.pos_at_build[i]).squaredNorm());
   world.disp_bound = std::sqrt(d2);
-  return expired(world.disp_bound);
+  return expired(world.disp_bound + world.radius_growth);
 }
 
 }  // namespace

@@ -80,6 +80,9 @@ struct World {
   // Largest grain displacement since the last build: bounded cheaply each step by
   // the sum of max |v| dt, measured exactly only when the bound reaches half the skin.
   double disp_bound = 0.0;
+  // Growth of the largest radius since the last build (radius-growth compaction): gaps
+  // close by at most twice this, so it counts like a displacement.
+  double radius_growth = 0.0;
 
   // Instability watch: an overlap beyond this fraction of the smaller radius stops
   // the run (the contact force stage notes the first offender).
@@ -91,7 +94,8 @@ struct World {
   ContactStats<D> stats;
   std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};
 
-  std::vector<std::unique_ptr<Controller<D>>> controllers;
+  // Shared so that a world can be copied (a prepared sample reused for several tests).
+  std::vector<std::shared_ptr<Controller<D>>> controllers;
 
   const PairLaw& pair_law(std::uint16_t a, std::uint16_t b) const {
     return pair_laws[a * materials.size() + b];

@@ -104,6 +104,11 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     t.finish();
   }
   if (s.materials.empty()) r.fail("materials", "missing: define at least one [[materials]]");
+  for (const auto& m : s.materials)
+    if (m.law != s.materials.front().law)
+      r.fail("materials", "materials '" + s.materials.front().name + "' and '" + m.name +
+                              "' use different contact laws; all materials of a scene (walls "
+                              "included) must use the same law");
   auto material_name = [&](TableReader& t, const std::string& key) {
     const std::string m = t.string(key, s.materials.front().name);
     if (!names.count(m)) t.fail(key, "unknown material '" + m + "'");

@@ -1,0 +1,298 @@
+#include "lab/run_triaxial.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+
+#include "controllers/axial_strain_rate.hpp"
+#include "controllers/radius_growth.hpp"
+#include "controllers/stress_servo.hpp"
+#include "core/error.hpp"
+#include "core/random.hpp"
+#include "core/step.hpp"
+#include "io/output_files.hpp"
+#include "io/progress.hpp"
+#include "lab/lab_box.hpp"
+#include "lab/soil_parameters.hpp"
+#include "measure/measurements.hpp"
+#include "scene/random_cloud.hpp"
+
+namespace geodem {
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+template <int D>
+struct Lab {
+  using Vec = typename Dim<D>::Vec;
+  const TriaxialSettings& s;
+  const RunOptions& opt;
+  World<D> w;
+  LabBox<D> box;
+  Progress progress;
+  HistoryCsv prep_csv;
+  std::uint64_t total_steps = 0;
+  double wall_s = 0.0;
+
+  Lab(const TriaxialSettings& settings, const RunOptions& options)
+      : s(settings), opt(options), progress(options.quiet) {}
+
+  double porosity() const {
+    double solid = 0.0;
+    for (double r : w.particles.radius) solid += Dim<D>::volume(r);
+    return 1.0 - solid / box.volume(w);
+  }
+  double grain_friction_deg() const { return std::atan(w.pair_law(0, 0).mu) / kDeg; }
+  void set_grain_friction_deg(double deg) {
+    w.pair_laws[0].mu = std::tan(deg * kDeg);  // grain-grain: entry (0, 0)
+  }
+
+  // Steps with measurement every `every` steps; stops when `done()` holds on a
+  // measured step or after max_steps. Returns false on reaching max_steps.
+  template <typename Done>
+  bool run_until(const std::string& stage, std::uint64_t max_steps, std::uint64_t every,
+                 Done&& done, double fraction_base = 0.0) {
+    for (std::uint64_t k = 1; k <= max_steps; ++k) {
+      w.measure_this_step = k % every == 0;
+      step(w);
+      ++total_steps;
+      if (w.measure_this_step) {
+        const double unb = unbalanced_force_ratio(w);
+        progress.update(stage, w.step, w.time, fraction_base,
+                        "mean stress " + format_number(box.mean_stress(w)) + " Pa, porosity " +
+                            format_number(porosity()) + ", unbalanced " + format_number(unb));
+        if (done(unb)) return true;
+      }
+    }
+    return false;
+  }
+
+  // One row of preparation.csv; phase 1 compaction, 2 friction reduction, 3 stabilisation.
+  void prep_row(double phase) {
+    prep_csv.row({phase, static_cast<double>(w.step), w.time, box.mean_stress(w), porosity(),
+                  grain_friction_deg(), unbalanced_force_ratio(w), coordination_number(w),
+                  w.particles.radius.empty() ? 0.0 : w.particles.radius[0]});
+  }
+
+  void build() {
+    w.materials = {s.grain, s.wall};
+    Vec size;
+    for (int k = 0; k < D; ++k) size[k] = s.box[static_cast<std::size_t>(k)];
+    box = LabBox<D>::add_to(w, Vec::Zero(), size, 1);
+    w.resolve_pair_laws();
+    Random rng(s.seed);
+    const double mean =
+        mean_radius_for_porosity<D>(size.prod(), s.count, s.initial_porosity, s.radius_fuzz);
+    std::vector<Sphere<D>> grains;
+    try {
+      grains = random_cloud<D>(Vec::Zero(), size, s.count, mean, s.radius_fuzz, rng);
+    } catch (const std::runtime_error& e) {
+      throw InputError(s.file, 0, "sample.initial_porosity", e.what());
+    }
+    w.particles.reserve(grains.size());
+    for (const auto& g : grains) w.particles.add(g.centre, g.radius, s.grain.density, 0);
+    w.auto_dt = true;
+    w.dt_safety = s.dt_safety;
+    w.dt_update_interval = s.dt_update_interval;
+    w.sort_interval = 10;
+  }
+
+  // Radius growth to the isotropic stress; then friction reduction to the target porosity.
+  nlohmann::json prepare() {
+    prep_csv.open(opt.out_dir + "/preparation.csv",
+                  {"phase", "step", "time", "mean_stress", "porosity", "friction_deg", "unbalanced",
+                   "coordination", "radius_0"});
+    w.local_damping = s.compaction_damping;
+    auto growth = std::make_shared<RadiusGrowth<D>>(box, s.compaction_stress, s.max_multiplier,
+                                                    s.final_max_multiplier);
+    w.controllers = {growth};
+    const double target = s.compaction_stress;
+    auto stable = [&](double unb) {
+      prep_row(1);
+      return std::abs(box.mean_stress(w) - target) < s.stress_tolerance * target &&
+             unb < s.unbalanced_tolerance;
+    };
+    if (!run_until("compaction", s.max_compaction_steps, 200, stable, 0.0))
+      throw std::runtime_error(
+          "compaction did not reach the isotropic stress with unbalanced force < " +
+          format_number(s.unbalanced_tolerance) + " in " + std::to_string(s.max_compaction_steps) +
+          " steps; raise compaction.max_steps");
+    nlohmann::json prep;
+    prep["porosity_after_compaction"] = porosity();
+    prep["compaction_steps"] = w.step;
+    double phi = grain_friction_deg();
+    if (s.target_porosity > 0.0) {
+      while (porosity() > s.target_porosity) {
+        if (phi < 1e-3) {
+          prep["warning"] = "target porosity not reached with zero friction";
+          break;
+        }
+        phi *= s.friction_factor;
+        set_grain_friction_deg(phi);
+        run_until("friction reduction", static_cast<std::uint64_t>(s.friction_interval),
+                  static_cast<std::uint64_t>(s.friction_interval), [&](double) {
+                    prep_row(2);
+                    return true;
+                  });
+      }
+      // Settle at the final friction with the stress held.
+      if (!run_until("stabilisation", s.max_compaction_steps, 200, [&](double unb) {
+            prep_row(3);
+            return std::abs(box.mean_stress(w) - target) < s.stress_tolerance * target &&
+                   unb < s.unbalanced_tolerance;
+          }))
+        throw std::runtime_error("the sample did not stabilise after the friction reduction");
+    }
+    prep["compaction_friction_deg"] = phi;
+    prep["porosity"] = porosity();
+    prep["mean_stress"] = box.mean_stress(w);
+    prep["steps"] = w.step;
+    w.controllers.clear();
+    set_grain_friction_deg(std::atan(s.grain.friction) / kDeg);
+    return prep;
+  }
+};
+
+template <int D>
+nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
+  using Vec = typename Dim<D>::Vec;
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  prepare_output_dir(opt.out_dir);
+  Lab<D> lab(s, opt);
+  lab.build();
+  nlohmann::json results;
+  results["preparation"] = lab.prepare();
+  const World<D> prepared = lab.w;
+  const int axial = D - 1;
+  const bool several = s.confining_stresses.size() > 1;
+
+  std::vector<std::string> cols = {"test",  "step", "time", "axial_strain", "volumetric_strain",
+                                   "sigma1"};
+  if (D == 3) cols.push_back("sigma2");
+  for (const char* c : {"sigma3", "p", "q", "porosity", "coordination", "unbalanced"})
+    cols.push_back(c);
+  HistoryCsv history;
+  history.open(opt.out_dir + "/history.csv", cols);
+  VtkSeries<D> vtk(opt.out_dir);
+  if (s.vtk) vtk.write(prepared);
+
+  nlohmann::json tests = nlohmann::json::array();
+  std::vector<double> s1_peaks, s3_peaks;
+  for (std::size_t t = 0; t < s.confining_stresses.size(); ++t) {
+    const double sigma3 = s.confining_stresses[t];
+    lab.w = prepared;
+    World<D>& w = lab.w;
+    w.local_damping = s.shear_damping;
+    // Isotropic re-consolidation to this test's confining stress.
+    std::vector<std::shared_ptr<StressServo<D>>> servos;
+    for (int k = 0; k < D; ++k)
+      servos.push_back(std::make_shared<StressServo<D>>(lab.box, k, sigma3, s.servo_gain));
+    w.controllers.assign(servos.begin(), servos.end());
+    auto consolidated = [&](double unb) {
+      for (int k = 0; k < D; ++k)
+        if (std::abs(lab.box.stress(w, k) - sigma3) > s.stress_tolerance * sigma3) return false;
+      return unb < s.unbalanced_tolerance;
+    };
+    if (!lab.run_until("consolidation", s.max_compaction_steps, 200, consolidated))
+      throw std::runtime_error("the sample did not consolidate to " + format_number(sigma3) +
+                               " Pa");
+    const double porosity0 = lab.porosity();
+    // Compression: axial wall strain-controlled, lateral walls servo-controlled.
+    w.controllers.clear();
+    for (int k = 0; k < D - 1; ++k) w.controllers.push_back(servos[static_cast<std::size_t>(k)]);
+    w.controllers.push_back(std::make_shared<AxialStrainRate<D>>(lab.box, axial, s.strain_rate));
+    const Vec ref = lab.box.size(w);
+    const double d_eps = s.max_axial_strain / s.history_points;
+    double next_record = 0.0;
+    std::vector<double> vtk_left = s.vtk_at_strains;
+    std::sort(vtk_left.begin(), vtk_left.end(), std::greater<>());
+    CompressionCurve curve;
+    curve.dimension = D;
+    double eps = 0.0;
+    while (eps < s.max_axial_strain) {
+      w.measure_this_step = true;  // the stresses are read from walls every step anyway
+      step(w);
+      ++lab.total_steps;
+      eps = lab.box.strain(w, axial, ref);
+      if (eps >= next_record || eps >= s.max_axial_strain) {
+        next_record += d_eps;
+        double lat[2] = {lab.box.stress(w, 0), D == 3 ? lab.box.stress(w, 1) : 0.0};
+        const double s1 = lab.box.stress(w, axial);
+        const double s2 = D == 3 ? std::max(lat[0], lat[1]) : lat[0];
+        const double s3 = D == 3 ? std::min(lat[0], lat[1]) : lat[0];
+        const double ev = lab.box.volumetric_strain(w, ref);
+        const double p = D == 3 ? (s1 + s2 + s3) / 3.0 : 0.5 * (s1 + s3);
+        std::vector<double> row = {
+            static_cast<double>(t), static_cast<double>(w.step), w.time, eps, ev, s1};
+        if (D == 3) row.push_back(s2);
+        for (double v :
+             {s3, p, s1 - s3, lab.porosity(), coordination_number(w), unbalanced_force_ratio(w)})
+          row.push_back(v);
+        history.row(row);
+        curve.axial_strain.push_back(eps);
+        curve.volumetric_strain.push_back(ev);
+        curve.sigma1.push_back(s1);
+        curve.sigma3.push_back(s3);
+        lab.progress.update("compression " + std::to_string(t + 1) + "/" +
+                                std::to_string(s.confining_stresses.size()),
+                            w.step, w.time, eps / s.max_axial_strain,
+                            "q " + format_number(s1 - s3) + " Pa");
+      }
+      while (s.vtk && !vtk_left.empty() && eps >= vtk_left.back()) {
+        vtk.write(w);
+        vtk_left.pop_back();
+      }
+    }
+    if (s.vtk) vtk.write(w);
+    const SoilParameters sp = soil_parameters(curve);
+    nlohmann::json r;
+    r["confining_stress"] = sigma3;
+    r["porosity_initial"] = porosity0;
+    r["peak_q"] = sp.peak_q;
+    r["axial_strain_at_peak"] = sp.axial_strain_at_peak;
+    r["phi_peak_deg"] = sp.phi_peak_deg;
+    r["phi_residual_deg"] = sp.phi_residual_deg;
+    r["young_modulus"] = sp.young_modulus;
+    r["poisson_ratio"] = sp.poisson_ratio;
+    r["dilatancy_deg"] = sp.dilatancy_deg;
+    r["steps"] = w.step;
+    tests.push_back(r);
+    // Peak principal stresses for the envelope.
+    std::size_t ip = 0;
+    for (std::size_t i = 0; i < curve.sigma1.size(); ++i)
+      if (curve.sigma1[i] - curve.sigma3[i] > curve.sigma1[ip] - curve.sigma3[ip]) ip = i;
+    s1_peaks.push_back(curve.sigma1[ip]);
+    s3_peaks.push_back(curve.sigma3[ip]);
+  }
+  lab.progress.finish();
+  results["tests"] = tests;
+  if (tests.size() == 1)
+    for (auto& [k, v] : tests[0].items()) results[k] = v;  // the contract's flat keys
+  if (several) {
+    const MohrCoulomb mc = fit_mohr_coulomb(s1_peaks, s3_peaks);
+    results["mohr_coulomb"] = {{"cohesion", mc.cohesion}, {"phi_deg", mc.phi_deg}};
+  }
+  nlohmann::json summary;
+  summary["kind"] = "triaxial";
+  summary["geodem_version"] = version();
+  summary["status"] = "completed";
+  summary["scenario"] = s.resolved;
+  summary["results"] = results;
+  const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  summary["timing"] = timing_json(lab.w, wall_s, lab.total_steps, opt.threads);
+  write_summary(opt.out_dir, summary);
+  return summary;
+}
+
+}  // namespace
+
+nlohmann::json run_triaxial(const TriaxialSettings& settings, const RunOptions& options) {
+  return settings.dimension == 2 ? run<2>(settings, options) : run<3>(settings, options);
+}
+
+}  // namespace geodem

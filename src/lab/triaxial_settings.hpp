@@ -1,0 +1,56 @@
+// Settings of a `kind = "triaxial"` scenario (docs/lab_tests.md): the sample, its
+// preparation (radius growth to an isotropic stress, then friction reduction to a
+// target porosity) and one compression test per confining stress.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/toml_reader.hpp"
+#include "materials/material.hpp"
+
+namespace geodem {
+
+struct TriaxialSettings {
+  std::string file;
+  int dimension = 3;
+  std::uint64_t seed = 1;
+  // [sample]
+  std::vector<double> box;  // m
+  std::size_t count = 1000;
+  double radius_fuzz = 0.3333;
+  double initial_porosity = 0.95;
+  // [material], [walls]
+  Material grain, wall;
+  // [time]
+  double dt_safety = 0.8;
+  int dt_update_interval = 10;
+  // [compaction]
+  double compaction_stress = 1e4;
+  double target_porosity = -1.0;  // < 0: no friction reduction
+  double compaction_damping = 0.2;
+  double max_multiplier = 0.0;  // 0: 1 + 2e4/young (yade's tutorial)
+  double final_max_multiplier = 0.0;
+  double stress_tolerance = 0.01;
+  double unbalanced_tolerance = 1e-3;
+  double friction_factor = 0.95;
+  int friction_interval = 500;
+  std::uint64_t max_compaction_steps = 2'000'000;
+  // [shear]
+  double strain_rate = 0.02;
+  double max_axial_strain = 0.15;
+  std::vector<double> confining_stresses;
+  double shear_damping = 0.1;
+  double servo_gain = 0.5;
+  int history_points = 300;
+  std::vector<double> vtk_at_strains;
+  // [output]
+  bool vtk = true, plots = true;
+  nlohmann::json resolved;
+};
+
+TriaxialSettings read_triaxial(const toml::table& root, const std::string& file);
+
+}  // namespace geodem
