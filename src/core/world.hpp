@@ -116,6 +116,8 @@ struct World {
     for (std::size_t a = 0; a < nm; ++a)
       for (std::size_t w = 0; w < walls.size(); ++w)
         wall_laws[a * walls.size() + w] = combine(materials[a], materials[walls[w].material]);
+    for (auto* table : {&pair_laws, &wall_laws})
+      for (auto& law : *table) law.per_unit_thickness = D == 2;
     rebuild_needed = true;
   }
 };

@@ -126,33 +126,34 @@ struct Lab {
     prep["compaction_steps"] = w.step;
     double phi = grain_friction_deg();
     if (s.target_porosity > 0.0) {
-      while (porosity() > s.target_porosity) {
+      // Lower the friction by steps, holding the stress by radius growth, until the
+      // porosity reaches the target (checked every 50 steps so as not to overshoot).
+      bool reached = porosity() <= s.target_porosity;
+      while (!reached) {
         if (phi < 1e-3) {
           prep["warning"] = "target porosity not reached with zero friction";
           break;
         }
         phi *= s.friction_factor;
         set_grain_friction_deg(phi);
-        run_until("friction reduction", static_cast<std::uint64_t>(s.friction_interval),
-                  static_cast<std::uint64_t>(s.friction_interval), [&](double) {
-                    prep_row(2);
-                    return true;
-                  });
+        reached = run_until("friction reduction", static_cast<std::uint64_t>(s.friction_interval),
+                            50, [&](double) { return porosity() <= s.target_porosity; });
+        prep_row(2);
       }
-      // Settle at the final friction with the stress held.
-      if (!run_until("stabilisation", s.max_compaction_steps, 200, [&](double unb) {
-            prep_row(3);
-            return std::abs(box.mean_stress(w) - target) < s.stress_tolerance * target &&
-                   unb < s.unbalanced_tolerance;
-          }))
-        throw std::runtime_error("the sample did not stabilise after the friction reduction");
     }
     prep["compaction_friction_deg"] = phi;
+    // Back to the test friction, then settle with the stress held.
+    set_grain_friction_deg(std::atan(s.grain.friction) / kDeg);
+    if (!run_until("stabilisation", s.max_compaction_steps, 200, [&](double unb) {
+          prep_row(3);
+          return std::abs(box.mean_stress(w) - target) < s.stress_tolerance * target &&
+                 unb < s.unbalanced_tolerance;
+        }))
+      throw std::runtime_error("the sample did not stabilise after the friction reduction");
     prep["porosity"] = porosity();
     prep["mean_stress"] = box.mean_stress(w);
     prep["steps"] = w.step;
     w.controllers.clear();
-    set_grain_friction_deg(std::atan(s.grain.friction) / kDeg);
     return prep;
   }
 };

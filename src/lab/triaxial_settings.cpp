@@ -69,7 +69,7 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
     c->fail("max_multiplier", "expected a growth factor in (1, 1.5)");
   if (!(s.final_max_multiplier > 1.0 && s.final_max_multiplier <= s.max_multiplier))
     c->fail("final_max_multiplier", "expected a growth factor in (1, max_multiplier]");
-  s.stress_tolerance = c->in_range("stress_tolerance", 0.01, 1e-5, 0.2);
+  s.stress_tolerance = c->in_range("stress_tolerance", 0.005, 1e-5, 0.2);
   s.unbalanced_tolerance = c->in_range("unbalanced_tolerance", 1e-3, 1e-6, 0.5);
   s.friction_factor = c->in_range("friction_factor", 0.95, 0.1, 0.999);
   s.friction_interval = static_cast<int>(c->integer("friction_interval", 500, 1, 1000000));

@@ -33,7 +33,7 @@ struct TriaxialSettings {
   double compaction_damping = 0.2;
   double max_multiplier = 0.0;  // 0: 1 + 2e4/young (yade's tutorial)
   double final_max_multiplier = 0.0;
-  double stress_tolerance = 0.01;
+  double stress_tolerance = 0.005;
   double unbalanced_tolerance = 1e-3;
   double friction_factor = 0.95;
   int friction_interval = 500;

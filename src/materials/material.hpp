@@ -47,17 +47,24 @@ struct PairLaw {
   double kn = 0.0, kt = 0.0;    // constant stiffness
   double e1r = 0.0, e2r = 0.0;  // contact moduli of the two sides (modulus form)
   double kt_over_kn = 0.5;
+  // 2D: stiffness per metre of thickness from the contact modulus (see linear_kn).
+  bool per_unit_thickness = false;
   double estar = 0.0, gstar = 0.0;  // Hertz-Mindlin effective moduli
   double mu = 0.0;                  // Coulomb coefficient
   double beta = 0.0;                // viscous damping ratio from the restitution
   double hertz_damp = 0.0;          // 2 sqrt(5/6) * beta_hertz (LIGGGHTS/Tsuji form)
   bool tangential_damping = false;
 
-  // Normal stiffness of the linear law for grain radii r1, r2.
+  // Normal stiffness of the linear law for grain radii r1, r2 (r2 = r1 against a wall).
+  // 3D: kn = 2 E1 r1 E2 r2/(E1 r1 + E2 r2), i.e. 2 E r1 r2/(r1 + r2) for one material (N/m).
+  // 2D (per metre of thickness): the same divided by the pair's mean radius, so that
+  // kn = E for equal grains (N/m per m = Pa) and overlaps/radius do not depend on the
+  // grain size, as in 3D.
   double linear_kn(double r1, double r2) const {
     if (constant_stiffness) return kn;
     const double a = e1r * r1, b = e2r * r2;
-    return 2.0 * a * b / (a + b);
+    const double k = 2.0 * a * b / (a + b);
+    return per_unit_thickness ? k / (0.5 * (r1 + r2)) : k;
   }
   double linear_kt(double kn_value) const {
     return constant_stiffness ? kt : kt_over_kn * kn_value;

@@ -37,10 +37,11 @@ TYPED_TEST(Deposit, SettlesAndFloorCarriesTheWeight) {
   World<D> w;
   const double spacing = 2.1 * r0;
   const int across = D == 2 ? 40 : 12;  // grains along each horizontal axis
-  // Contact modulus (kn = E r for equal grains) for an overlap of ~5e-3 r0 under the weight
-  // of the column, whose height in grains is n / across^(D-1).
+  // Contact modulus (kn = E r for equal grains in 3D, kn = E per metre in 2D) for an overlap
+  // of ~5e-3 r0 under the weight of the column, whose height in grains is n / across^(D-1).
   const double layers = static_cast<double>(n_grains) / std::pow(across, D - 1);
-  const double young = rho * Dim<D>::volume(r0) * g * layers / (5e-3 * r0) / r0;
+  const double kn = rho * Dim<D>::volume(r0) * g * layers / (5e-3 * r0);
+  const double young = D == 3 ? kn / r0 : kn;
   const auto grain = add_material(w, modulus_material(young, 0.5, 0.5, 0.5, rho));
   const auto floor = add_material(w, modulus_material(young, 0.5, 0.5, 0.5, rho, "floor"));
   const auto smooth = add_material(w, modulus_material(young, 0.5, 0.0, 0.5, rho, "smooth"));

@@ -1,0 +1,91 @@
+// The lab test's controllers on small samples, discs and spheres: the prepared sample
+// reaches the isotropic stress within 1 % and the target porosity within 0.005; during
+// compression the servo holds sigma3 within 1 % of its target (after the first 0.5 % of
+// axial strain), and q starts from zero and rises.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "lab/run_triaxial.hpp"
+#include "test_util.hpp"
+
+namespace geodem::test {
+namespace {
+
+template <typename T>
+class Triaxial : public ::testing::Test {};
+TYPED_TEST_SUITE(Triaxial, Dims, DimNames);
+
+std::vector<std::vector<double>> read_csv(const std::string& path,
+                                          std::vector<std::string>& header) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::stringstream hs(line);
+  for (std::string c; std::getline(hs, c, ',');) header.push_back(c);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream ls(line);
+    std::vector<double> r;
+    for (std::string c; std::getline(ls, c, ',');) r.push_back(std::stod(c));
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+TYPED_TEST(Triaxial, PreparationAndServoHoldTheirTargets) {
+  constexpr int D = TypeParam::value;
+  TriaxialSettings s;
+  s.dimension = D;
+  s.box = std::vector<double>(D, 1.0);
+  s.count = D == 2 ? 400 : 300;
+  s.grain.young = 5e7;
+  s.grain.friction = std::tan(30.0 * std::numbers::pi / 180.0);
+  s.grain.density = 2600;
+  s.wall = s.grain;
+  s.wall.friction = 0.0;
+  s.compaction_stress = 1e5;
+  s.target_porosity = D == 2 ? 0.19 : 0.42;
+  s.max_multiplier = 1.0 + 2e4 / s.grain.young;
+  s.final_max_multiplier = 1.0 + 2e3 / s.grain.young;
+  s.strain_rate = 0.1;
+  s.max_axial_strain = 0.02;
+  s.confining_stresses = {1e5};
+  s.vtk = false;
+  s.plots = false;
+  RunOptions opt;
+  opt.quiet = true;
+  opt.out_dir = ::testing::TempDir() + "/triaxial" + std::to_string(D);
+  const auto summary = run_triaxial(s, opt);
+  const auto& prep = summary["results"]["preparation"];
+  report(std::to_string(D) + "D prepared porosity - target",
+         prep["porosity"].get<double>() - s.target_porosity);
+  report(std::to_string(D) + "D prepared mean stress / target - 1",
+         prep["mean_stress"].get<double>() / s.compaction_stress - 1.0);
+  EXPECT_FALSE(prep.contains("warning"));
+  EXPECT_NEAR(prep["porosity"].get<double>(), s.target_porosity, 0.005);
+  EXPECT_NEAR(prep["mean_stress"].get<double>(), s.compaction_stress, 0.01 * s.compaction_stress);
+
+  std::vector<std::string> header;
+  const auto rows = read_csv(opt.out_dir + "/history.csv", header);
+  const auto col = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  ASSERT_GT(rows.size(), 50u);
+  double worst = 0.0;
+  for (const auto& r : rows)
+    if (r[col("axial_strain")] > 0.005)
+      worst = std::max(worst, std::abs(r[col("sigma3")] / 1e5 - 1.0));
+  report(std::to_string(D) + "D servo: largest |sigma3/target - 1| after 0.5 % strain", worst);
+  EXPECT_LT(worst, 0.01);
+  EXPECT_LT(std::abs(rows.front()[col("q")]), 0.02 * 1e5);
+  EXPECT_GT(rows.back()[col("q")], 0.3 * 1e5);
+}
+
+}  // namespace
+}  // namespace geodem::test
