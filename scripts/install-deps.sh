@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(g++ cmake ninja-build libeigen3-dev libtomlplusplus-dev libcli11-dev
           nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
           python3 python3-numpy python3-matplotlib clang-format)
-if [[ "${1:-}" == "--with-peers" ]]; then packages+=(liggghts); fi
+if [[ "${1:-}" == "--with-peers" ]]; then packages+=(liggghts yade); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
