@@ -48,15 +48,17 @@ struct Dim<3> {
   static double rot_norm2(const Rot& w) { return w.squaredNorm(); }
   // Rotation by the angle |w| dt about w (world frame). Small angles (the usual
   // case: |w| dt is tiny) use the Taylor series of sin and cos, exact to double
-  // precision below 1e-2 rad and much cheaper than the library calls.
+  // precision below 1e-2 rad and much cheaper than the library calls. The product of
+  // two unit quaternions drifts from unit length only by rounding: one Newton step
+  // towards |q| = 1 (no square root, no division) keeps it there.
   static void rotate(Orient& q, const Rot& w, double dt) {
     const double w2 = w.squaredNorm();
     if (w2 == 0.0) return;
     const double a2 = w2 * dt * dt;  // angle^2
     double c, s_over_angle;          // cos(angle/2), sin(angle/2)/angle
     if (a2 < 1e-4) {
-      c = 1.0 - a2 / 8.0 + a2 * a2 / 384.0;
-      s_over_angle = 0.5 - a2 / 48.0 + a2 * a2 / 3840.0;
+      c = 1.0 + a2 * (-1.0 / 8.0 + a2 * (1.0 / 384.0));
+      s_over_angle = 0.5 + a2 * (-1.0 / 48.0 + a2 * (1.0 / 3840.0));
     } else {
       const double angle = std::sqrt(a2);
       c = std::cos(0.5 * angle);
@@ -64,7 +66,7 @@ struct Dim<3> {
     }
     const Eigen::Vector3d v = (s_over_angle * dt) * w;
     q = Eigen::Quaterniond(c, v.x(), v.y(), v.z()) * q;
-    q.normalize();
+    q.coeffs() *= 1.5 - 0.5 * q.squaredNorm();
   }
 };
 

@@ -104,12 +104,13 @@ template <int D>
 
 template <int D>
 void step(World<D>& world) {
-  if (world.dt <= 0.0 || (world.auto_dt && world.step % world.dt_update_interval == 0)) {
-    update_timestep(world);
-  }
   {
     ScopedStage<D> t(world, Stage::kNeighbours);
     if (world.rebuild_needed || list_expired(world)) build_neighbour_list(world);
+  }
+  // After the neighbour search, so that the first automatic step sees the contacts.
+  if (world.dt <= 0.0 || (world.auto_dt && world.step % world.dt_update_interval == 0)) {
+    update_timestep(world);
   }
   {
     ScopedStage<D> t(world, Stage::kContactForces);

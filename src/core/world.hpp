@@ -68,6 +68,10 @@ struct World {
   double dt = 0.0;
   bool auto_dt = false;
   double dt_safety = 0.8;
+  // Integrate grain orientations. Off by default: a round grain's orientation does not
+  // enter its dynamics (forces depend on angular velocity only), and the update is about
+  // a tenth of a step's cost; whatever reads orientations (clumps, output) turns it on.
+  bool track_orientation = false;
   int dt_update_interval = 50;
   double skin_factor = 0.4;  // skin as a fraction of the mean radius
   // Every this many neighbour-list builds, grains are renumbered in cell order so

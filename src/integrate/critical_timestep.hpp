@@ -1,8 +1,9 @@
-// Automatic time step, after yade's GlobalStiffnessTimeStepper: each grain's
-// stiffness is the sum of its contacts' stiffnesses (normal for translation,
-// tangential x lever^2 for rotation); dt = safety x min over grains of
-// sqrt(m/K_t), sqrt(I/K_r). Without contacts, each grain is taken in contact with
-// an equal grain (linear law) or the Rayleigh wave time is used (Hertz law).
+// Automatic time step, the rule of yade's GlobalStiffnessTimeStepper: each grain's
+// stiffness matrix is approximated by its diagonal, summed over its contacts
+// (translation along axis a: kt + (kn - kt) n_a^2; rotation about a: kt lever^2
+// (1 - n_a^2)); dt = safety x sqrt(2) x min over grains of sqrt(m / max K_t) and
+// sqrt(I / max K_r). A grain without contacts counts as meeting an equal grain
+// (linear law), or 0.2 x the Rayleigh wave time bounds it (Hertz law).
 #pragma once
 
 #include "core/world.hpp"

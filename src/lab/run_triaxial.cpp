@@ -216,12 +216,15 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     curve.dimension = D;
     double eps = 0.0;
     while (eps < s.max_axial_strain) {
-      w.measure_this_step = true;  // the stresses are read from walls every step anyway
+      // Wall stresses come every step; the contact statistics (coordination, unbalanced
+      // force) only on steps that may be recorded: those that reach the next record point.
+      const double next_eps = eps + 2.0 * s.strain_rate * w.dt;
+      w.measure_this_step = next_eps >= next_record || next_eps >= s.max_axial_strain;
       step(w);
       ++lab.total_steps;
       eps = lab.box.strain(w, axial, ref);
-      if (eps >= next_record || eps >= s.max_axial_strain) {
-        next_record += d_eps;
+      if (w.measure_this_step && (eps >= next_record || eps >= s.max_axial_strain)) {
+        while (next_record <= eps) next_record += d_eps;
         double lat[2] = {lab.box.stress(w, 0), D == 3 ? lab.box.stress(w, 1) : 0.0};
         const double s1 = lab.box.stress(w, axial);
         const double s2 = D == 3 ? std::max(lat[0], lat[1]) : lat[0];

@@ -202,5 +202,45 @@ TYPED_TEST(SolidVolumeSum, PorosityOfHalvesAndWholes) {
   EXPECT_LT(rel_err(porosity_in_box(w, box), 1.0 - want), 1e-6);
 }
 
+// Orientation integration (when tracked): a free grain spinning at a constant angular
+// velocity w turns by |w| t about w; the quaternion stays of unit length to rounding.
+TEST(Orientation, FreeSpinTurnsByOmegaTimesT) {
+  World<3> w;
+  add_material(w, linear_material(1e5, 5e4, 0.5, 1.0));
+  w.resolve_pair_laws();
+  w.particles.add(Vec<3>::Zero(), 0.01, 2600.0, 0);
+  const Eigen::Vector3d omega(0.3, -1.2, 2.0);
+  w.particles.angvel[0] = omega;
+  w.track_orientation = true;
+  w.dt = 1e-3;
+  const int steps = 5000;
+  for (int k = 0; k < steps; ++k) step(w);
+  const double t = steps * w.dt;
+  const Eigen::Quaterniond want(Eigen::AngleAxisd(omega.norm() * t, omega.normalized()));
+  const Eigen::Quaterniond& got = w.particles.orient[0];
+  EXPECT_NEAR(got.norm(), 1.0, 1e-12);
+  EXPECT_LT(got.angularDistance(want), 1e-9);
+}
+
+TEST(Orientation, TwoRotationsCompose) {
+  // 90 degrees about x, then 90 degrees about z: the body's x axis ends along y... and
+  // its z axis (turned to -y by the first rotation) ends along +x.
+  World<3> w;
+  add_material(w, linear_material(1e5, 5e4, 0.5, 1.0));
+  w.resolve_pair_laws();
+  w.particles.add(Vec<3>::Zero(), 0.01, 2600.0, 0);
+  w.track_orientation = true;
+  const int steps = 1000;
+  w.dt = 1e-3;
+  const double rate = 0.5 * std::numbers::pi / (steps * w.dt);
+  w.particles.angvel[0] = Eigen::Vector3d(rate, 0.0, 0.0);
+  for (int k = 0; k < steps; ++k) step(w);
+  w.particles.angvel[0] = Eigen::Vector3d(0.0, 0.0, rate);
+  for (int k = 0; k < steps; ++k) step(w);
+  const Eigen::Quaterniond& q = w.particles.orient[0];
+  EXPECT_LT((q * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm(), 1e-9);
+  EXPECT_LT((q * Eigen::Vector3d::UnitZ() - Eigen::Vector3d::UnitX()).norm(), 1e-9);
+}
+
 }  // namespace
 }  // namespace geodem::test
