@@ -62,7 +62,7 @@ void grain_pairs(World<D>& world) {
         continue;
       }
       const double dist = std::sqrt(dist2);
-      const Vec nrm = d / dist;
+      const Vec nrm = d * (1.0 / dist);
       const double delta = rs - dist;
       if (delta > overlap_limit * std::min(ri, rj)) [[unlikely]]
         note_overlap(world, i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
