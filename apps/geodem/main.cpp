@@ -1,5 +1,7 @@
 // geodem command line: run, check, plot (docs/cli.md).
 // Exit codes: 0 success, 2 bad input, 3 unstable simulation, 1 anything else.
+#include <malloc.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
@@ -42,6 +44,12 @@ Loaded load(const std::string& file, const std::vector<std::string>& overrides) 
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Grain and contact arrays are large and are reallocated when the neighbour list grows or
+  // the grains are renumbered. A fixed mmap threshold gives each such block pages of its
+  // own that go back to the system when it is freed; glibc's adaptive threshold would
+  // otherwise move them into the heap, whose holes stay resident (B2 bed of 20,000 spheres:
+  // 22.4 MB peak before, 14.4 MB with this and orientations left unstored).
+  mallopt(M_MMAP_THRESHOLD, 256 * 1024);
   CLI::App app{"geodem: discrete element method for geotechnical engineering"};
   app.set_version_flag("--version", std::string("geodem ") + geodem::version());
   app.require_subcommand(1);

@@ -3,6 +3,7 @@
 
 usage: run_b2.py [--with-peers] [--n 20000 200000] [--dims 3 2] [--settle 50000]
                  [--dense 10000] [--out benchmarks/results/b2] [--geodem build/geodem]
+                 [--liggghts-results FILE ...]
 
 For each N: writes the common initial state, runs geodem (3D, and 2D discs with
 --dims 2) and LIGGGHTS (3D) one after the other, each on one thread/process, and prints
@@ -58,7 +59,12 @@ def run_liggghts(n, out, settle, dense):
                        capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"LIGGGHTS run failed:\n{r.stderr[-3000:]}")
-    kv = dict(tok.split("=", 1) for tok in r.stdout.split() if "=" in tok)
+    return parse_liggghts_line(r.stdout)
+
+
+def parse_liggghts_line(line):
+    """The key=value line that run_liggghts.sh prints, as a result row."""
+    kv = dict(tok.split("=", 1) for tok in line.split() if "=" in tok)
     return {"wall": float(kv["wall_s"]), "settle_ps": float(kv["settle_pstep_per_s"]),
             "dense_ps": float(kv["dense_pstep_per_s"]), "rss_kb": int(kv["peak_rss_kb"]),
             "top": float(kv["final_zmax"]), "ke": float(kv["final_ke"])}
@@ -73,7 +79,15 @@ def main():
     ap.add_argument("--dense", type=int, default=10000)
     ap.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "b2"))
     ap.add_argument("--geodem", default=str(ROOT / "build" / "geodem"))
+    ap.add_argument("--liggghts-results", nargs="+", default=[], metavar="FILE",
+                    help="lines printed by run_liggghts.sh earlier on this machine (the run of the "
+                         "same N is tabulated instead of running LIGGGHTS again)")
     a = ap.parse_args()
+    earlier = {}
+    for f in a.liggghts_results:
+        for line in Path(f).read_text().splitlines():
+            if line.startswith("n="):
+                earlier[int(line.split()[0][2:])] = parse_liggghts_line(line)
     if a.with_peers:
         subprocess.run([str(ROOT / "scripts" / "install-deps.sh"), "--with-peers"], check=True)
     rows = []
@@ -87,7 +101,9 @@ def main():
         for dim in a.dims:
             results[f"geodem {dim}D"] = run_geodem(a.geodem, n, dim, out, a.settle, a.dense)
             print(f"geodem {dim}D N={n}: {results[f'geodem {dim}D']}", file=sys.stderr)
-        if a.with_peers:
+        if n in earlier:
+            results["LIGGGHTS 3D"] = earlier[n]
+        elif a.with_peers:
             results["LIGGGHTS 3D"] = run_liggghts(n, out, a.settle, a.dense)
             print(f"LIGGGHTS N={n}: {results['LIGGGHTS 3D']}", file=sys.stderr)
         rows.append((n, results))

@@ -71,6 +71,7 @@ struct World {
   // Integrate grain orientations. Off by default: a round grain's orientation does not
   // enter its dynamics (forces depend on angular velocity only), and the update is about
   // a tenth of a step's cost; whatever reads orientations (clumps, output) turns it on.
+  // Untracked, no orientation is stored (Particles::orient stays empty).
   bool track_orientation = false;
   int dt_update_interval = 50;
   double skin_factor = 0.4;  // skin as a fraction of the mean radius

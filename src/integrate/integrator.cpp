@@ -37,6 +37,7 @@ void integrate(World<D>& world) {
   const double* __restrict inv_mass = P.inv_mass.data();
   const double* __restrict inv_inertia = P.inv_inertia.data();
   const std::uint8_t* __restrict flags = P.flags.data();
+  if (world.track_orientation && P.orient.size() != n) P.orient.resize(n, Dim<D>::identity());
   auto* __restrict orient = P.orient.data();
   const bool track = world.track_orientation;
   double vmax2 = 0.0;

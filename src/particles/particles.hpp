@@ -33,6 +33,7 @@ struct Particles {
   std::vector<std::uint8_t> flags;
   // Warm state: needed by the neighbour list and the outputs.
   std::vector<Vec> pos_at_build;  // position when the neighbour list was last built
+  // Orientations: empty unless tracked (World::track_orientation), then one per grain.
   std::vector<Orient> orient;
   std::vector<std::uint32_t> id;  // stable user-facing identifier
 
@@ -41,7 +42,7 @@ struct Particles {
   void reserve(std::size_t n) {
     pos.reserve(n), vel.reserve(n), angvel.reserve(n), force.reserve(n), torque.reserve(n);
     radius.reserve(n), inv_mass.reserve(n), inv_inertia.reserve(n), material.reserve(n);
-    flags.reserve(n), pos_at_build.reserve(n), orient.reserve(n), id.reserve(n);
+    flags.reserve(n), pos_at_build.reserve(n), id.reserve(n);
   }
 
   // Adds a grain of the given density; returns its index.
@@ -60,7 +61,7 @@ struct Particles {
     material.push_back(mat);
     flags.push_back(fixed ? kFixed : 0);
     pos_at_build.push_back(x);
-    orient.push_back(Dim<D>::identity());
+    if (!orient.empty()) orient.push_back(Dim<D>::identity());
     id.push_back(static_cast<std::uint32_t>(id.size()));
     return pos.size() - 1;
   }
@@ -76,7 +77,8 @@ struct Particles {
     };
     apply(pos), apply(vel), apply(angvel), apply(force), apply(torque), apply(radius);
     apply(inv_mass), apply(inv_inertia), apply(material), apply(flags), apply(pos_at_build);
-    apply(orient), apply(id);
+    if (!orient.empty()) apply(orient);
+    apply(id);
   }
 };
 
