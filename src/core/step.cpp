@@ -1,6 +1,7 @@
 // The time step as a fixed pipeline of named, timed stages:
 //
-//   1. neighbour search   rebuild the Verlet list when a grain or wall moved half the skin
+//   1. neighbour search   rebuild the Verlet list when a grain or wall moved half the skin;
+//                         then, every update_interval steps, the automatic time step
 //   2. contact forces     grain-grain and grain-wall laws; wall reactions; measurements
 //   3. controllers        servo walls, radius growth, ... (once each)
 //   4. integration        leapfrog with local damping; walls move; time advances
