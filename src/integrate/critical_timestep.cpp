@@ -78,7 +78,8 @@ double critical_timestep(const World<D>& world) {
       const Vec d = q - P.pos[i];
       const double gap = w.kind == WallKind::kPlane ? (P.pos[i] - w.point).dot(w.normal) : d.norm();
       const double delta = P.radius[i] - gap;
-      if (delta <= 0.0) continue;
+      // A centre exactly on a segment has no normal: the force stage skips it too.
+      if (delta <= 0.0 || (w.kind != WallKind::kPlane && gap <= 0.0)) continue;
       const Vec nrm = w.kind == WallKind::kPlane ? Vec(-w.normal) : Vec(d / gap);
       const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
       const NormalResult nr =
