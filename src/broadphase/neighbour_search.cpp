@@ -8,16 +8,23 @@ namespace geodem {
 
 namespace {
 
-// Copies the history of the pairs of `old_row` that are also in the new row.
+// Copies the history of the pairs of an old row that are also in the new row; the
+// others start from `zero`, and `dropped` sees each old entry that is not carried over.
 // Both rows are sorted by partner index: one linear merge.
-template <typename Vec>
-void merge_history(const std::uint32_t* old_other, const Vec* old_spring, std::size_t old_n,
-                   const std::uint32_t* new_other, Vec* new_spring, std::size_t new_n) {
+template <typename T, typename Dropped>
+void merge_history(const std::uint32_t* old_other, const T* old_value, std::size_t old_n,
+                   const std::uint32_t* new_other, T* new_value, std::size_t new_n,
+                   const T& zero, Dropped&& dropped) {
   std::size_t a = 0;
   for (std::size_t b = 0; b < new_n; ++b) {
-    while (a < old_n && old_other[a] < new_other[b]) ++a;
-    new_spring[b] = (a < old_n && old_other[a] == new_other[b]) ? old_spring[a] : Vec::Zero();
+    while (a < old_n && old_other[a] < new_other[b]) dropped(old_value[a++]);
+    if (a < old_n && old_other[a] == new_other[b]) {
+      new_value[b] = old_value[a++];
+    } else {
+      new_value[b] = zero;
+    }
   }
+  while (a < old_n) dropped(old_value[a++]);
 }
 
 template <int D>
@@ -61,8 +68,10 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
     for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k)
       ++start[std::min(inv[i], inv[old.other[k]]) + 1];
   for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  const bool extras = !old.extra.empty();
   scratch.other.resize(old.other.size());
   scratch.spring.resize(old.other.size());
+  scratch.extra.resize(extras ? old.other.size() : 0);
   fill.assign(start.begin(), start.end() - 1);
   for (std::size_t i = 0; i < n; ++i)
     for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k) {
@@ -70,6 +79,11 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
       const std::uint32_t row = std::min(a, b), slot = fill[row]++;
       scratch.other[slot] = std::max(a, b);
       scratch.spring[slot] = a < b ? old.spring[k] : Vec(-old.spring[k]);
+      if (extras) {
+        auto e = old.extra[k];
+        if (a > b) e.roll = -e.roll, e.twist = -e.twist;  // moments on the other body
+        scratch.extra[slot] = e;
+      }
     }
   // Rows are short: insertion sort by partner, moving the spring along.
   for (std::size_t i = 0; i < n; ++i)
@@ -77,11 +91,13 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
       for (std::uint32_t y = x; y > start[i] && scratch.other[y - 1] > scratch.other[y]; --y) {
         std::swap(scratch.other[y - 1], scratch.other[y]);
         std::swap(scratch.spring[y - 1], scratch.spring[y]);
+        if (extras) std::swap(scratch.extra[y - 1], scratch.extra[y]);
       }
   // Grain-wall rows keep their entries; only the rows move.
   scratch.wall_start.assign(n + 1, 0);
   scratch.wall.resize(old.wall.size());
   scratch.wall_spring.resize(old.wall.size());
+  scratch.wall_extra.resize(extras ? old.wall.size() : 0);
   for (std::size_t k = 0; k < n; ++k)
     scratch.wall_start[k + 1] =
         scratch.wall_start[k] + (old.wall_start[order[k] + 1] - old.wall_start[order[k]]);
@@ -91,6 +107,7 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
     for (std::uint32_t m = 0; m < len; ++m) {
       scratch.wall[scratch.wall_start[k] + m] = old.wall[src + m];
       scratch.wall_spring[scratch.wall_start[k] + m] = old.wall_spring[src + m];
+      if (extras) scratch.wall_extra[scratch.wall_start[k] + m] = old.wall_extra[src + m];
     }
   }
   old.swap_rows(scratch);
@@ -127,6 +144,8 @@ void build_neighbour_list(World<D>& world) {
     L.wall_start.assign(n + 1, 0);
     L.wall.clear();
     L.wall_spring.clear();
+    L.extra.clear();
+    L.wall_extra.clear();
   };
   reset_rows();
 
@@ -186,8 +205,10 @@ void build_neighbour_list(World<D>& world) {
     }
 
     const int zr = D == 3 ? 1 : 0;
+    const bool clumps = !P.clump.empty();
     for (std::size_t i = 0; i < n; ++i) {
       const Vec xi = P.pos[i];
+      const std::uint32_t ci = clumps ? P.clump[i] : kNoClump;
       const double ri = P.radius[i] + L.skin;
       std::array<int, 3> c{0, 0, 0};
       for (int k = 0; k < D; ++k) c[k] = g.coord(xi, k);
@@ -205,6 +226,7 @@ void build_neighbour_list(World<D>& world) {
           for (std::uint32_t s = b; s < e; ++s) {
             const std::uint32_t j = g.sorted[s];
             if (j <= i) continue;
+            if (ci != kNoClump && P.clump[j] == ci) continue;  // members of one clump
             const double reach = ri + P.radius[j];
             if ((P.pos[j] - xi).squaredNorm() < reach * reach) L.other.push_back(j);
           }
@@ -228,16 +250,32 @@ void build_neighbour_list(World<D>& world) {
 
   L.spring.resize(L.other.size());
   L.wall_spring.resize(L.wall.size());
+  const bool extras = world.contact_extras;
+  const bool old_extras = have_old && old.extra.size() == old.other.size() &&
+                          old.wall_extra.size() == old.wall.size();
+  L.extra.resize(extras ? L.other.size() : 0);
+  L.wall_extra.resize(extras ? L.wall.size() : 0);
+  const ContactExtra<D> no_extra{};
+  // A bonded pair that is no longer listed has separated beyond the skin: its bond is
+  // broken (only possible when a bond's elastic stretch exceeds the skin).
+  auto drop_extra = [&world](const ContactExtra<D>& e) { world.broken_bonds += e.bonded; };
+  auto drop_nothing = [](const auto&) {};
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t nb = L.start[i], nn = L.start[i + 1] - nb;
     const std::size_t wb = L.wall_start[i], wn = L.wall_start[i + 1] - wb;
     if (have_old) {
       const std::size_t ob = old.start[i], on = old.start[i + 1] - ob;
       merge_history(old.other.data() + ob, old.spring.data() + ob, on, L.other.data() + nb,
-                    L.spring.data() + nb, nn);
+                    L.spring.data() + nb, nn, Vec::Zero().eval(), drop_nothing);
       const std::size_t owb = old.wall_start[i], own = old.wall_start[i + 1] - owb;
       merge_history(old.wall.data() + owb, old.wall_spring.data() + owb, own, L.wall.data() + wb,
-                    L.wall_spring.data() + wb, wn);
+                    L.wall_spring.data() + wb, wn, Vec::Zero().eval(), drop_nothing);
+      if (extras && old_extras) {
+        merge_history(old.other.data() + ob, old.extra.data() + ob, on, L.other.data() + nb,
+                      L.extra.data() + nb, nn, no_extra, drop_extra);
+        merge_history(old.wall.data() + owb, old.wall_extra.data() + owb, own,
+                      L.wall.data() + wb, L.wall_extra.data() + wb, wn, no_extra, drop_nothing);
+      }
     } else {
       for (std::size_t k = 0; k < nn; ++k) L.spring[nb + k] = Vec::Zero();
       for (std::size_t k = 0; k < wn; ++k) L.wall_spring[wb + k] = Vec::Zero();

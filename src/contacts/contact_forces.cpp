@@ -16,7 +16,9 @@ void note_overlap(World<D>& world, std::size_t i, std::int64_t partner, double r
   world.overlap_ratio = ratio;
 }
 
-template <int D, bool Measure>
+// Grain-grain contacts. `Extras`: the contacts carry rolling springs and bond states
+// (a separate instantiation, so that plain frictional packings pay nothing for them).
+template <int D, bool Measure, bool Extras>
 void grain_pairs(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   using Rot = typename Dim<D>::Rot;
@@ -38,6 +40,7 @@ void grain_pairs(World<D>& world) {
   const std::uint32_t* __restrict start = L.start.data();
   const std::uint32_t* __restrict other = L.other.data();
   Vec* __restrict spring = L.spring.data();
+  ContactExtra<D>* __restrict extra = L.extra.data();
   const PairLaw* pair_laws = world.pair_laws.data();
   const double overlap_limit = world.overlap_limit;
   for (std::size_t i = 0; i < n; ++i) {
@@ -56,9 +59,12 @@ void grain_pairs(World<D>& world) {
       const double rj = radius[j];
       const double rs = ri + rj;
       const double dist2 = d.squaredNorm();
-      if (dist2 >= rs * rs) {
+      bool bonded = false;
+      if constexpr (Extras) bonded = extra[k].bonded;
+      if (dist2 >= rs * rs && !bonded) {
         // Apart: the history ends (written only when there is one, to spare stores).
         if (spring[k].squaredNorm() != 0.0) spring[k] = Vec::Zero();
+        if constexpr (Extras) extra[k] = ContactExtra<D>{};
         continue;
       }
       const double dist = std::sqrt(dist2);
@@ -72,14 +78,36 @@ void grain_pairs(World<D>& world) {
           (vel[j] - Dim<D>::cross(angvel[j], aj * nrm)) - (vi + Dim<D>::cross(wi, ai * nrm));
       const PairLaw& law = laws[material[j]];
       double fn;
-      const Vec f =
-          contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt, spring[k], fn);
+      Vec f;
+      if (!bonded) {
+        f = contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt, spring[k], fn);
+      } else {
+        bool broken;
+        f = bonded_contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt,
+                                    spring[k], fn, broken);
+        if (broken) {
+          extra[k].bonded = 0;
+          ++world.broken_bonds;
+          if (delta <= 0.0) {
+            extra[k] = ContactExtra<D>{};
+            continue;
+          }
+        }
+      }
       force[j] += f;
       fi -= f;
       // Torques: lever arms +ai n (grain i) and -aj n (grain j); the normal part gives none.
       const Rot tq = Dim<D>::cross(nrm, f);
       ti -= ai * tq;
       torque[j] -= aj * tq;
+      if constexpr (Extras) {
+        if (law.rolling()) {
+          const Rot m = rolling_moment<D>(law, tangential_stiffness(law, ri, rj, delta), ri, rj, nrm,
+                                          Rot(angvel[j] - wi), dt, fn, extra[k]);
+          torque[j] += m;
+          ti -= m;
+        }
+      }
       if constexpr (Measure) {
         st.fabric_stress += d * f.transpose();
         st.sum_force += f.norm();
@@ -93,7 +121,7 @@ void grain_pairs(World<D>& world) {
   }
 }
 
-template <int D, bool Measure>
+template <int D, bool Measure, bool Extras>
 void grain_walls(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   auto& P = world.particles;
@@ -116,6 +144,7 @@ void grain_walls(World<D>& world) {
       } else {
         if (!wall_closest(wall, xi, q)) {
           L.wall_spring[k] = Vec::Zero();
+          if constexpr (Extras) L.wall_extra[k] = ContactExtra<D>{};
           continue;
         }
         const Vec d = q - xi;
@@ -126,6 +155,7 @@ void grain_walls(World<D>& world) {
       const double delta = ri - gap;
       if (delta <= 0.0) {
         L.wall_spring[k] = Vec::Zero();
+        if constexpr (Extras) L.wall_extra[k] = ContactExtra<D>{};
         continue;
       }
       if (delta > world.overlap_limit * ri) [[unlikely]]
@@ -138,6 +168,14 @@ void grain_walls(World<D>& world) {
                                      delta, vrel, dt, L.wall_spring[k], fn);
       P.force[i] -= f;
       P.torque[i] -= a * Dim<D>::cross(nrm, f);
+      if constexpr (Extras) {
+        if (law.rolling()) {
+          // The wall does not rotate: wrel = -w_grain; the grain is body 1.
+          const auto m = rolling_moment<D>(law, tangential_stiffness(law, ri, wall_partner_radius(law, ri), delta), ri, kWallRadius, nrm,
+                                           -P.angvel[i], dt, fn, L.wall_extra[k]);
+          P.torque[i] -= m;
+        }
+      }
       wall.force += f;
       wall.stiffness += law.law == LawKind::kLinear ? law.linear_kn(ri, ri) : 1.5 * fn / delta;
       if constexpr (Measure) {
@@ -159,13 +197,22 @@ void compute_contact_forces(World<D>& world) {
     w.force = Dim<D>::Vec::Zero();
     w.stiffness = 0.0;
   }
+  const bool extras = world.contact_extras;
   if (world.measure_this_step) {
     world.stats = ContactStats<D>{};
-    grain_pairs<D, true>(world);
-    grain_walls<D, true>(world);
+    if (extras) {
+      grain_pairs<D, true, true>(world);
+      grain_walls<D, true, true>(world);
+    } else {
+      grain_pairs<D, true, false>(world);
+      grain_walls<D, true, false>(world);
+    }
+  } else if (extras) {
+    grain_pairs<D, false, true>(world);
+    grain_walls<D, false, true>(world);
   } else {
-    grain_pairs<D, false>(world);
-    grain_walls<D, false>(world);
+    grain_pairs<D, false, false>(world);
+    grain_walls<D, false, false>(world);
   }
 }
 

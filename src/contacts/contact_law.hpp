@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contacts/neighbour_list.hpp"
 #include "core/dim.hpp"
 #include "materials/material.hpp"
 
@@ -46,20 +47,12 @@ inline double wall_partner_radius(const PairLaw& p, double r) {
   return {4.0 / 3.0 * p.estar * a * delta - cn * vn, 8.0 * p.gstar * a, cn};
 }
 
-// Updates the tangential spring (incremental, rotated with the contact plane) and
-// applies Coulomb's limit; returns the total force on body 2.
-template <int D>
-[[gnu::always_inline]] inline typename Dim<D>::Vec contact_force(
-    const PairLaw& p, double r1, double r2, double inv_msum, const typename Dim<D>::Vec& n,
-    double delta, const typename Dim<D>::Vec& vrel, double dt, typename Dim<D>::Vec& spring,
-    double& fn_out) {
-  using Vec = typename Dim<D>::Vec;
-  const double vn = vrel.dot(n);
-  const NormalResult nr = normal_force(p, r1, r2, inv_msum, delta, vn);
-  // Keep the spring in the current tangent plane, with its magnitude: remove its normal
-  // part sn and scale by |s|/|s_t| = 1/sqrt(1 - x), x = sn^2/|s|^2. The normal turns
-  // little in a step, so x is tiny and the series 1 + x/2 + 3x^2/8 is exact to rounding
-  // (next term 5x^3/16 < 1e-16 for x < 1e-5), sparing a square root on the hot path.
+// Keeps a spring (force or moment) in the current tangent plane with its magnitude:
+// removes its normal part sn and scales by |s|/|s_t| = 1/sqrt(1 - x), x = sn^2/|s|^2.
+// The normal turns little in a step, so x is tiny and the series 1 + x/2 + 3x^2/8 is
+// exact to rounding (next term 5x^3/16 < 1e-16 for x < 1e-5), sparing a square root.
+template <typename Vec>
+[[gnu::always_inline]] inline void keep_in_tangent_plane(Vec& spring, const Vec& n) {
   const double s2 = spring.squaredNorm();
   if (s2 > 0.0) {
     const double sn = spring.dot(n);
@@ -71,6 +64,26 @@ template <int D>
       spring *= 1.0 / std::sqrt(1.0 - x);
     }
   }
+}
+
+// Tangential stiffness of the pair's law at overlap delta (r2 as in normal_force).
+inline double tangential_stiffness(const PairLaw& p, double r1, double r2, double delta) {
+  if (p.law == LawKind::kLinear) return p.linear_kt(p.linear_kn(r1, r2));
+  const double rstar = std::isinf(r2) ? r1 : r1 * r2 / (r1 + r2);
+  return 8.0 * p.gstar * std::sqrt(rstar * std::max(delta, 0.0));
+}
+
+// Updates the tangential spring (incremental, rotated with the contact plane) and
+// applies Coulomb's limit; returns the total force on body 2.
+template <int D>
+[[gnu::always_inline]] inline typename Dim<D>::Vec contact_force(
+    const PairLaw& p, double r1, double r2, double inv_msum, const typename Dim<D>::Vec& n,
+    double delta, const typename Dim<D>::Vec& vrel, double dt, typename Dim<D>::Vec& spring,
+    double& fn_out) {
+  using Vec = typename Dim<D>::Vec;
+  const double vn = vrel.dot(n);
+  const NormalResult nr = normal_force(p, r1, r2, inv_msum, delta, vn);
+  keep_in_tangent_plane(spring, n);
   const Vec vt = vrel - vn * n;
   spring -= (nr.kt * dt) * vt;
   const double limit = p.mu * std::max(nr.fn, 0.0);
@@ -89,6 +102,73 @@ template <int D>
     spring = ft;
   }
   return nr.fn * n + ft;
+}
+
+// A bonded contact (linear law): the normal spring also pulls (delta < 0 allowed) and
+// the shear spring holds up to the shear strength plus friction. The bond breaks when
+// the tension exceeds the tensile strength or the shear force exceeds its limit; from
+// that step on the contact is frictional (`broken` is set and the force returned is
+// the frictional one: zero if the grains are apart). Returns the force on body 2.
+template <int D>
+inline typename Dim<D>::Vec bonded_contact_force(const PairLaw& p, double r1, double r2,
+                                                 double inv_msum, const typename Dim<D>::Vec& n,
+                                                 double delta, const typename Dim<D>::Vec& vrel,
+                                                 double dt, typename Dim<D>::Vec& spring,
+                                                 double& fn_out, bool& broken) {
+  using Vec = typename Dim<D>::Vec;
+  const double vn = vrel.dot(n);
+  const double kn = p.linear_kn(r1, r2), kt = p.linear_kt(kn);
+  const double cn = (p.beta > 0.0 && inv_msum > 0.0) ? 2.0 * p.beta * std::sqrt(kn / inv_msum)
+                                                     : 0.0;
+  const double fn = kn * delta - cn * vn;
+  keep_in_tangent_plane(spring, n);
+  spring -= (kt * dt) * (vrel - vn * n);
+  const double scale = p.bond_scale(r1, r2);
+  const double shear_limit = p.bond_shear * scale + p.mu * std::max(fn, 0.0);
+  broken = fn < -p.bond_tension * scale || spring.squaredNorm() > shear_limit * shear_limit;
+  if (broken && delta <= 0.0) {
+    spring = Vec::Zero();
+    fn_out = 0.0;
+    return Vec::Zero();
+  }
+  fn_out = fn;
+  if (broken) {
+    const double limit = p.mu * std::max(fn, 0.0);
+    const double ft2 = spring.squaredNorm();
+    if (ft2 > limit * limit) spring *= limit / std::sqrt(ft2);
+  }
+  return fn * n + spring;
+}
+
+// Rolling (and, in 3D, twisting) resistance: elastic-plastic moment springs driven by
+// the relative angular velocity wrel = w2 - w1, of stiffness kr = roll_kr kt R^2 and
+// limited to eta fn R with R = PairLaw::rolling_radius (yade's CohFrictMat, LAMMPS's
+// "rolling sds"). The rolling spring stays in the tangent plane. Returns the moment on
+// body 2 (body 1 takes its opposite).
+template <int D>
+[[gnu::always_inline]] inline typename Dim<D>::Rot rolling_moment(
+    const PairLaw& p, double kt, double r1, double r2, const typename Dim<D>::Vec& n,
+    const typename Dim<D>::Rot& wrel, double dt, double fn, ContactExtra<D>& h) {
+  const double r = PairLaw::rolling_radius(r1, r2);
+  const double kr = p.roll_kr * kt * r * r;
+  const double fr = std::max(fn, 0.0) * r;
+  if constexpr (D == 2) {
+    h.roll -= kr * dt * wrel;
+    const double limit = p.roll_mu * fr;
+    if (std::abs(h.roll) > limit) h.roll = std::copysign(limit, h.roll);
+    return h.roll;
+  } else {
+    keep_in_tangent_plane(h.roll, n);
+    const double wn = wrel.dot(n);
+    h.roll -= (kr * dt) * (wrel - wn * n);
+    const double limit = p.roll_mu * fr;
+    const double m2 = h.roll.squaredNorm();
+    if (m2 > limit * limit) h.roll *= limit / std::sqrt(m2);
+    h.twist -= kr * dt * wn;
+    const double tlimit = p.twist_mu * fr;
+    if (std::abs(h.twist) > tlimit) h.twist = std::copysign(tlimit, h.twist);
+    return h.roll + h.twist * n;
+  }
 }
 
 }  // namespace geodem

@@ -13,6 +13,14 @@
 
 namespace geodem {
 
+// Contact state beyond the tangential spring, kept only when some law needs it.
+template <int D>
+struct ContactExtra {
+  typename Dim<D>::Rot roll = Dim<D>::zero_rot();  // rolling moment spring (on body 2)
+  double twist = 0.0;                              // twisting moment (3D), along n
+  std::uint8_t bonded = 0;                         // cohesive bond intact
+};
+
 template <int D>
 struct NeighbourList {
   using Vec = typename Dim<D>::Vec;
@@ -24,6 +32,9 @@ struct NeighbourList {
   std::vector<std::uint32_t> wall_start;
   std::vector<std::uint32_t> wall;
   std::vector<Vec> wall_spring;
+  // Parallel to `spring` / `wall_spring` when the world has contact extras, else empty.
+  std::vector<ContactExtra<D>> extra;
+  std::vector<ContactExtra<D>> wall_extra;
 
   double skin = 0.0;  // extra distance listed beyond touching (m)
   std::uint64_t builds = 0;
@@ -33,10 +44,12 @@ struct NeighbourList {
   void swap_rows(NeighbourList& o) {
     start.swap(o.start), other.swap(o.other), spring.swap(o.spring);
     wall_start.swap(o.wall_start), wall.swap(o.wall), wall_spring.swap(o.wall_spring);
+    extra.swap(o.extra), wall_extra.swap(o.wall_extra);
   }
   std::size_t bytes() const {
     return start.capacity() * 4 + other.capacity() * 4 + spring.capacity() * sizeof(Vec) +
-           wall_start.capacity() * 4 + wall.capacity() * 4 + wall_spring.capacity() * sizeof(Vec);
+           wall_start.capacity() * 4 + wall.capacity() * 4 + wall_spring.capacity() * sizeof(Vec) +
+           (extra.capacity() + wall_extra.capacity()) * sizeof(ContactExtra<D>);
   }
 };
 

@@ -47,6 +47,13 @@ class RadiusGrowth : public Controller<D> {
       P.inv_inertia[i] /= inertia_factor;
       rmax = std::max(rmax, P.radius[i]);
     }
+    // Clumps grow homothetically about their centres of mass.
+    // A member's centre moves by |offset| (m - 1) too: the bound takes that in.
+    for (std::size_t i = 0; i < P.body_offset.size(); ++i) {
+      P.body_offset[i] *= m;
+      rmax = std::max(rmax, P.radius[i] + P.body_offset[i].norm());
+    }
+    w.clumps.scale(m);
     // Gaps close by at most (r_i + r_j)(m - 1): counts as a displacement of rmax (m - 1).
     if (m > 1.0) w.radius_growth += rmax * (m - 1.0) / m;
   }

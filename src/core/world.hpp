@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "clumps/clumps.hpp"
 #include "contacts/neighbour_list.hpp"
 #include "core/dim.hpp"
 #include "materials/material.hpp"
@@ -57,6 +58,7 @@ struct World {
   using Vec = typename Dim<D>::Vec;
 
   Particles<D> particles;
+  Clumps<D> clumps;  // rigid bodies made of grains of `particles`
   std::vector<Wall<D>> walls;
   std::vector<Material> materials;
   std::vector<PairLaw> pair_laws;  // materials x materials
@@ -95,6 +97,11 @@ struct World {
   std::int64_t overlap_offender = -1, overlap_partner = -1;  // partner < 0: a wall (-1 - index)
   double overlap_ratio = 0.0;
 
+  // Rolling springs and bonds stored per contact (NeighbourList::extra); set by
+  // update_contact_extras(), which must be called again if pair laws are edited.
+  bool contact_extras = false;
+  std::uint64_t broken_bonds = 0;  // bonds broken since the start
+
   bool measure_this_step = false;
   ContactStats<D> stats;
   std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};
@@ -123,7 +130,14 @@ struct World {
         wall_laws[a * walls.size() + w] = combine(materials[a], materials[walls[w].material]);
     for (auto* table : {&pair_laws, &wall_laws})
       for (auto& law : *table) law.per_unit_thickness = D == 2;
+    update_contact_extras();
     rebuild_needed = true;
+  }
+  // Contacts carry rolling springs and bond states only when some pair law needs them.
+  void update_contact_extras() {
+    contact_extras = false;
+    for (auto* table : {&pair_laws, &wall_laws})
+      for (const auto& law : *table) contact_extras |= law.rolling() || law.cohesive();
   }
 };
 

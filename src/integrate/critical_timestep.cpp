@@ -11,9 +11,12 @@ namespace geodem {
 
 namespace {
 
-// Diagonal of one grain's stiffness matrix, summed over its contacts: for a contact of
-// normal n, translation along axis a takes kt + (kn - kt) n_a^2 and rotation about a
-// takes kt lever^2 (1 - n_a^2) (in 2D, the one rotation axis is normal to n: kt lever^2).
+// Diagonal of one body's stiffness matrix, summed over its contacts. A contact of
+// normal n at lever l from the body's centre (l = r n for a round grain) adds
+// kt + (kn - kt) n_a^2 to translation along axis a, and to rotation about a the diagonal
+// of kn (l x n)(l x n)^T + kt sum_t (l x t)(l x t)^T, i.e. kt (|l|^2 - l_a^2) +
+// (kn - kt) (l x n)_a^2 (in 2D, the one axis: kt |l|^2 + (kn - kt) (l x n)^2); a rolling
+// spring adds kr to rotation about the tangent axes. Bodies are grains, then clumps.
 template <int D>
 struct DiagonalStiffness {
   using Vec = typename Dim<D>::Vec;
@@ -24,13 +27,15 @@ struct DiagonalStiffness {
     trans.assign(n, Vec::Zero());
     rot.assign(n, Dim<D>::zero_rot());
   }
-  void add(std::size_t i, const Vec& n, double kn, double kt, double lever) {
+  void add(std::size_t b, const Vec& n, double kn, double kt, const Vec& lever, double kr) {
     const Vec n2 = n.cwiseProduct(n);
-    trans[i] += Vec::Constant(kt) + (kn - kt) * n2;
+    trans[b] += Vec::Constant(kt) + (kn - kt) * n2;
+    const auto ln = Dim<D>::cross(lever, n);
     if constexpr (D == 2) {
-      rot[i] += kt * lever * lever;
+      rot[b] += kt * lever.squaredNorm() + (kn - kt) * ln * ln + kr;
     } else {
-      rot[i] += (kt * lever * lever) * (Vec::Ones() - n2);
+      rot[b] += kt * (Vec::Constant(lever.squaredNorm()) - lever.cwiseProduct(lever)) +
+                (kn - kt) * ln.cwiseProduct(ln) + kr * (Vec::Ones() - n2);
     }
   }
   double max_trans(std::size_t i) const { return trans[i].maxCoeff(); }
@@ -52,7 +57,17 @@ double critical_timestep(const World<D>& world) {
   const auto& L = world.nlist;
   const std::size_t n = P.size();
   static thread_local DiagonalStiffness<D> K;
-  K.reset(n);
+  const auto& C = world.clumps;
+  K.reset(n + C.size());
+  // The body a grain's contacts load, and the lever from its centre to a contact point.
+  const bool clumps = !P.clump.empty();
+  auto body = [&](std::size_t i) {
+    return clumps && P.clump[i] != kNoClump ? n + P.clump[i] : i;
+  };
+  auto lever = [&](std::size_t i, const Vec& to_contact) -> Vec {
+    const Vec l = P.radius[i] * to_contact;
+    return clumps && P.clump[i] != kNoClump ? Vec(P.pos[i] + l - C.pos[P.clump[i]]) : l;
+  };
 
   const bool have_list = L.start.size() == n + 1;
   for (std::size_t i = 0; have_list && i < n; ++i) {
@@ -68,8 +83,9 @@ double critical_timestep(const World<D>& world) {
       const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[j])
                                                     : 1.5 * nr.fn / delta;  // dF/d(delta)
       const Vec nrm = d / dist;
-      K.add(i, nrm, kn, nr.kt, P.radius[i]);
-      K.add(j, nrm, kn, nr.kt, P.radius[j]);
+      const double kr = law.rolling_stiffness(nr.kt, P.radius[i], P.radius[j]);
+      K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr);
+      K.add(body(j), nrm, kn, nr.kt, lever(j, -nrm), kr);
     }
     for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
       const auto& w = world.walls[L.wall[k]];
@@ -86,7 +102,8 @@ double critical_timestep(const World<D>& world) {
           normal_force(law, P.radius[i], wall_partner_radius(law, P.radius[i]), 0.0, delta, 0.0);
       const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i])
                                                     : 1.5 * nr.fn / delta;
-      K.add(i, nrm, kn, nr.kt, P.radius[i]);
+      const double kr = law.rolling_stiffness(nr.kt, P.radius[i], kWallRadius);
+      K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr);
     }
   }
 
@@ -109,9 +126,15 @@ double critical_timestep(const World<D>& world) {
                               std::sqrt(mat.density / shear) / (0.1631 * mat.poisson + 0.8766);
       dt2 = std::min(dt2, 0.5 * rayleigh * rayleigh);
     }
+    if (P.member(i)) continue;  // its clump's stiffness is checked below
     const double kt = K.max_trans(i), kr = K.max_rot(i);
     if (kt > 0.0) dt2 = std::min(dt2, m / kt);
     if (kr > 0.0) dt2 = std::min(dt2, inertia / kr);
+  }
+  for (std::size_t c = 0; c < C.size(); ++c) {
+    const double kt = K.max_trans(n + c), kr = K.max_rot(n + c);
+    if (kt > 0.0) dt2 = std::min(dt2, 1.0 / (C.inv_mass[c] * kt));
+    if (kr > 0.0) dt2 = std::min(dt2, Clumps<D>::min_moment(C.inertia[c]) / kr);
   }
   return world.dt_safety * std::sqrt(2.0 * dt2);
 }

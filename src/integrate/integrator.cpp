@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "clumps/clump_dynamics.hpp"
+
 namespace geodem {
 
 namespace {
@@ -42,6 +44,7 @@ void integrate(World<D>& world) {
   const bool track = world.track_orientation;
   double vmax2 = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
+    if (flags[i] & kClumpMember) continue;  // moved with its clump below
     if (!(flags[i] & kFixed)) {
       Vec a = force[i] * inv_mass[i] + g;
       Rot aw = torque[i] * inv_inertia[i];
@@ -56,6 +59,7 @@ void integrate(World<D>& world) {
     if (track) Dim<D>::rotate(orient[i], angvel[i], dt);
     vmax2 = std::max(vmax2, vel[i].squaredNorm());
   }
+  vmax2 = std::max(vmax2, integrate_clumps(world));
   // Bound on how far any grain moved since the neighbour list was checked.
   world.disp_bound += std::sqrt(vmax2) * dt;
 }

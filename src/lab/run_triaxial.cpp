@@ -42,9 +42,7 @@ struct Lab {
       : s(settings), opt(options), progress(options.quiet) {}
 
   double porosity() const {
-    double solid = 0.0;
-    for (double r : w.particles.radius) solid += Dim<D>::volume(r);
-    return 1.0 - solid / box.volume(w);
+    return 1.0 - solid_volume(w) / box.volume(w);
   }
   double grain_friction_deg() const { return std::atan(w.pair_law(0, 0).mu) / kDeg; }
   void set_grain_friction_deg(double deg) {

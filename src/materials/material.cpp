@@ -15,6 +15,15 @@ PairLaw combine(const Material& a, const Material& b) {
   const double e = std::min(a.restitution, b.restitution);
   p.beta = damping_ratio(e);
   p.tangential_damping = a.tangential_damping && b.tangential_damping;
+  p.roll_mu = std::min(a.rolling_friction, b.rolling_friction);
+  p.twist_mu = std::min(a.twisting_friction, b.twisting_friction);
+  p.roll_kr = std::min(a.rolling_stiffness, b.rolling_stiffness);
+  p.bond_tension = std::min(a.normal_cohesion, b.normal_cohesion);
+  p.bond_shear = std::min(a.shear_cohesion, b.shear_cohesion);
+  p.bond_as_force = a.cohesion_as_force && b.cohesion_as_force;
+  if (p.cohesive() && a.law != LawKind::kLinear)
+    throw std::invalid_argument("materials '" + a.name + "' and '" + b.name +
+                                "': contact cohesion needs the linear law");
   if (a.law == LawKind::kLinear) {
     if (a.kn > 0.0 || b.kn > 0.0) {
       // Constant stiffness: springs in series when both give one.

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -30,6 +32,17 @@ struct Material {
   double friction = 0.5;            // Coulomb coefficient (tan of the friction angle)
   double restitution = 1.0;         // normal coefficient of restitution (1: no viscous damping)
   bool tangential_damping = false;  // tangential dashpot with the normal coefficient
+  // Rolling and twisting resistance (docs/physics.md, "Rolling resistance"): moment springs
+  // of stiffness rolling_stiffness x kt x R^2, limited to friction x fn x R.
+  double rolling_friction = 0.0;   // eta_r (dimensionless)
+  double twisting_friction = 0.0;  // eta_t, 3D only
+  double rolling_stiffness = 1.0;  // dimensionless factor on kt R^2
+  // Contact cohesion (bonds; docs/physics.md, "Cohesion"): tensile and shear strength,
+  // stresses (Pa) scaled by the contact size, or forces (N; N/m in 2D) when
+  // cohesion_as_force. Linear law only.
+  double normal_cohesion = 0.0;
+  double shear_cohesion = 0.0;
+  bool cohesion_as_force = false;
 };
 
 // Damping ratio of a linear spring-dashpot that gives restitution e:
@@ -54,6 +67,29 @@ struct PairLaw {
   double beta = 0.0;                // viscous damping ratio from the restitution
   double hertz_damp = 0.0;          // 2 sqrt(5/6) * beta_hertz (LIGGGHTS/Tsuji form)
   bool tangential_damping = false;
+  double roll_mu = 0.0, twist_mu = 0.0, roll_kr = 1.0;
+  double bond_tension = 0.0, bond_shear = 0.0;
+  bool bond_as_force = false;
+
+  bool rolling() const { return roll_mu > 0.0 || twist_mu > 0.0; }
+  bool cohesive() const { return bond_tension > 0.0 || bond_shear > 0.0; }
+  // Lever of the rolling moment: R = r1 r2/(r1 + r2) between grains, r1 against a wall
+  // (r2 = kWallRadius).
+  static double rolling_radius(double r1, double r2) {
+    return std::isinf(r2) ? r1 : r1 * r2 / (r1 + r2);
+  }
+  double rolling_stiffness(double kt_value, double r1, double r2) const {
+    if (!rolling()) return 0.0;
+    const double r = rolling_radius(r1, r2);
+    return roll_kr * kt_value * r * r;
+  }
+  // Bond strengths as forces: a stress times the contact size pi r_min^2 (3D) or
+  // 2 r_min per metre of thickness (2D), yade's normalised cohesion; or given as forces.
+  double bond_scale(double r1, double r2) const {
+    if (bond_as_force) return 1.0;
+    const double r = std::min(r1, r2);
+    return per_unit_thickness ? 2.0 * r : std::numbers::pi * r * r;
+  }
 
   // Normal stiffness of the linear law for grain radii r1, r2 (r2 = r1 against a wall).
   // 3D: kn = 2 E1 r1 E2 r2/(E1 r1 + E2 r2), i.e. 2 E r1 r2/(r1 + r2) for one material (N/m).
@@ -70,6 +106,9 @@ struct PairLaw {
     return constant_stiffness ? kt : kt_over_kn * kn_value;
   }
 };
+
+// Stands for a wall's radius where a law needs the partner's curvature (rolling lever).
+inline constexpr double kWallRadius = std::numeric_limits<double>::infinity();
 
 // Combines two materials (the second may be a wall's) into pair parameters.
 // Mixing rules (yade's FrictMat convention): friction = min, restitution = min,

@@ -8,14 +8,23 @@
 
 namespace geodem {
 
+// Bodies are the grains that are not clump members, and the clumps.
 template <int D>
 double kinetic_energy(const World<D>& world) {
   const auto& P = world.particles;
   double e = 0.0;
   for (std::size_t i = 0; i < P.size(); ++i) {
-    if (P.inv_mass[i] == 0.0) continue;
+    if (P.inv_mass[i] == 0.0 || P.member(i)) continue;
     e += 0.5 * P.vel[i].squaredNorm() / P.inv_mass[i] +
          0.5 * Dim<D>::rot_norm2(P.angvel[i]) / P.inv_inertia[i];
+  }
+  const auto& C = world.clumps;
+  for (std::size_t c = 0; c < C.size(); ++c) {
+    e += 0.5 * C.vel[c].squaredNorm() / C.inv_mass[c];
+    if constexpr (D == 2)
+      e += 0.5 * C.inertia[c] * C.angvel[c] * C.angvel[c];
+    else
+      e += 0.5 * C.angmom[c].dot(C.angvel[c]);
   }
   return e;
 }
@@ -25,8 +34,37 @@ double gravity_energy(const World<D>& world) {
   const auto& P = world.particles;
   double e = 0.0;
   for (std::size_t i = 0; i < P.size(); ++i)
-    if (P.inv_mass[i] > 0.0) e -= P.pos[i].dot(world.gravity) / P.inv_mass[i];
+    if (P.inv_mass[i] > 0.0 && !P.member(i)) e -= P.pos[i].dot(world.gravity) / P.inv_mass[i];
+  const auto& C = world.clumps;
+  for (std::size_t c = 0; c < C.size(); ++c) e -= C.pos[c].dot(world.gravity) / C.inv_mass[c];
   return e;
+}
+
+template <int D>
+double body_weight(const World<D>& world) {
+  const auto& P = world.particles;
+  double m = 0.0;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (P.inv_mass[i] > 0.0 && !P.member(i)) m += 1.0 / P.inv_mass[i];
+  for (double im : world.clumps.inv_mass) m += 1.0 / im;
+  return m * world.gravity.norm();
+}
+
+template <int D>
+double solid_volume(const World<D>& world) {
+  const auto& P = world.particles;
+  double v = 0.0;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (!P.member(i)) v += Dim<D>::volume(P.radius[i]);
+  for (double cv : world.clumps.volume) v += cv;
+  return v;
+}
+
+template <int D>
+std::size_t intact_bonds(const World<D>& world) {
+  std::size_t n = 0;
+  for (const auto& e : world.nlist.extra) n += e.bonded;
+  return n;
 }
 
 template <int D>
@@ -37,8 +75,13 @@ double unbalanced_force_ratio(const World<D>& world) {
   double sum = 0.0;
   std::size_t nfree = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
-    if (P.inv_mass[i] == 0.0) continue;
+    if (P.inv_mass[i] == 0.0 || P.member(i)) continue;
     sum += (P.force[i] + world.gravity / P.inv_mass[i]).norm();
+    ++nfree;
+  }
+  const auto& C = world.clumps;  // resultants summed at the last integration
+  for (std::size_t c = 0; c < C.size(); ++c) {
+    sum += (C.force[c] + world.gravity / C.inv_mass[c]).norm();
     ++nfree;
   }
   if (nfree == 0) return 0.0;
@@ -53,7 +96,7 @@ typename Dim<D>::Tensor average_stress(const World<D>& world, double volume) {
 
 template <int D>
 double coordination_number(const World<D>& world) {
-  const std::size_t n = world.particles.size();
+  const std::size_t n = body_count(world);
   return n ? 2.0 * static_cast<double>(world.stats.contacts) / static_cast<double>(n) : 0.0;
 }
 
@@ -165,6 +208,12 @@ template double kinetic_energy<2>(const World<2>&);
 template double kinetic_energy<3>(const World<3>&);
 template double gravity_energy<2>(const World<2>&);
 template double gravity_energy<3>(const World<3>&);
+template double body_weight<2>(const World<2>&);
+template double body_weight<3>(const World<3>&);
+template double solid_volume<2>(const World<2>&);
+template double solid_volume<3>(const World<3>&);
+template std::size_t intact_bonds<2>(const World<2>&);
+template std::size_t intact_bonds<3>(const World<3>&);
 template double unbalanced_force_ratio<2>(const World<2>&);
 template double unbalanced_force_ratio<3>(const World<3>&);
 template Dim<2>::Tensor average_stress<2>(const World<2>&, double);

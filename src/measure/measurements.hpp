@@ -11,16 +11,38 @@ struct Box {
   double volume() const { return (hi - lo).prod(); }
 };
 
-// Translational + rotational kinetic energy of the free grains (J, or J/m in 2D).
+// "Bodies" below are the grains that are not clump members, and the clumps.
+
+// Translational + rotational kinetic energy of the bodies (J, or J/m in 2D).
 // Velocities are the half-step ones of the leapfrog scheme.
 template <int D>
 double kinetic_energy(const World<D>& world);
 
-// Potential energy of the free grains in the gravity field (zero at the origin).
+// Potential energy of the bodies in the gravity field (zero at the origin).
 template <int D>
 double gravity_energy(const World<D>& world);
 
-// Mean resultant force on the free grains (contacts + gravity) over the mean contact
+// Total weight of the bodies that are not fixed (N, or N/m in 2D).
+template <int D>
+double body_weight(const World<D>& world);
+
+// Volume (area in 2D) of all grains, a clump's overlapping members counted once.
+template <int D>
+double solid_volume(const World<D>& world);
+
+// Number of cohesive bonds still intact.
+template <int D>
+std::size_t intact_bonds(const World<D>& world);
+
+// Number of bodies (free grains and clumps; fixed grains included).
+template <int D>
+std::size_t body_count(const World<D>& world) {
+  std::size_t members = 0;
+  for (auto c : world.particles.clump) members += c != kNoClump;
+  return world.particles.size() - members + world.clumps.size();
+}
+
+// Mean resultant force on the bodies (contacts + gravity) over the mean contact
 // force; needs world.stats from a measuring step. NaN when there is no contact.
 template <int D>
 double unbalanced_force_ratio(const World<D>& world);
@@ -31,7 +53,8 @@ template <int D>
 typename Dim<D>::Tensor average_stress(const World<D>& world, double volume);
 
 // Volume (area in 2D) of solid inside the box, partial grains counted exactly
-// (2D) or by Gauss quadrature over slices (3D, relative error below 1e-6).
+// (2D) or by Gauss quadrature over slices (3D, relative error below 1e-6). Clump
+// members are counted as separate grains: overlaps between them count twice.
 template <int D>
 double solid_volume_in_box(const World<D>& world, const Box<D>& box);
 
@@ -40,7 +63,8 @@ double porosity_in_box(const World<D>& world, const Box<D>& box) {
   return 1.0 - solid_volume_in_box(world, box) / box.volume();
 }
 
-// Mean number of grain-grain contacts per grain, 2 Nc / N, from a measuring step.
+// Mean number of grain-grain contacts per body, 2 Nc / N_bodies, from a measuring step
+// (two clumps touching through two pairs of members count two contacts).
 template <int D>
 double coordination_number(const World<D>& world);
 

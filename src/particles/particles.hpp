@@ -11,7 +11,8 @@
 namespace geodem {
 
 enum ParticleFlags : std::uint8_t {
-  kFixed = 1u << 0,  // not integrated: keeps its prescribed velocity
+  kFixed = 1u << 0,        // not integrated: keeps its prescribed velocity
+  kClumpMember = 1u << 1,  // moved by its clump (clumps/clumps.hpp), not integrated alone
 };
 
 template <int D>
@@ -36,6 +37,10 @@ struct Particles {
   // Orientations: empty unless tracked (World::track_orientation), then one per grain.
   std::vector<Orient> orient;
   std::vector<std::uint32_t> id;  // stable user-facing identifier
+  // Clump membership: empty while the world has no clump, then one entry per grain:
+  // the clump index (kNoClump for a free grain) and the centre in the clump's body frame.
+  std::vector<std::uint32_t> clump;
+  std::vector<Vec> body_offset;
 
   std::size_t size() const { return pos.size(); }
 
@@ -63,10 +68,17 @@ struct Particles {
     pos_at_build.push_back(x);
     if (!orient.empty()) orient.push_back(Dim<D>::identity());
     id.push_back(static_cast<std::uint32_t>(id.size()));
+    if (!clump.empty()) {
+      clump.push_back(0xffffffffu);
+      body_offset.push_back(Vec::Zero());
+    }
     return pos.size() - 1;
   }
 
   bool fixed(std::size_t i) const { return flags[i] & kFixed; }
+  bool member(std::size_t i) const { return flags[i] & kClumpMember; }
+  // A body integrated on its own: neither fixed nor a clump member.
+  bool free_body(std::size_t i) const { return !(flags[i] & (kFixed | kClumpMember)); }
 
   // Reorders every array: new index k holds the grain that had index order[k].
   void permute(const std::vector<std::uint32_t>& order) {
@@ -79,6 +91,7 @@ struct Particles {
     apply(inv_mass), apply(inv_inertia), apply(material), apply(flags), apply(pos_at_build);
     if (!orient.empty()) apply(orient);
     apply(id);
+    if (!clump.empty()) apply(clump), apply(body_offset);
   }
 };
 

@@ -144,10 +144,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     results["coordination"] = coordination_number(w);
     if (box) results["porosity"] = porosity_in_box(w, *box);
   }
-  double weight = 0.0;
-  for (std::size_t i = 0; i < w.particles.size(); ++i)
-    if (w.particles.inv_mass[i] > 0.0) weight += w.gravity.norm() / w.particles.inv_mass[i];
-  results["total_weight"] = weight;
+  results["total_weight"] = body_weight(w);
   if (!w.particles.pos.empty()) {  // extent of the grain centres
     auto lo = w.particles.pos[0], hi = w.particles.pos[0];
     for (const auto& x : w.particles.pos) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);

@@ -1,0 +1,181 @@
+#include "clumps/clump_dynamics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace geodem {
+
+namespace {
+
+// Cundall's local damping of one component (see integrate/integrator.cpp).
+inline double damped(double a, double v, double alpha) {
+  return a - std::copysign(alpha * std::abs(a), v);
+}
+
+// Rotation of the body by angle `phi` about its own principal axis k: the orientation
+// composes on the right, and the body-frame angular momentum turns the other way.
+inline void rotate_about_body_axis(Eigen::Quaterniond& q, Eigen::Vector3d& lb, int k, double phi) {
+  const double c = std::cos(0.5 * phi), s = std::sin(0.5 * phi);
+  Eigen::Quaterniond r(c, 0.0, 0.0, 0.0);
+  r.vec()[k] = s;
+  q = q * r;
+  const int a = (k + 1) % 3, b = (k + 2) % 3;
+  const double cp = std::cos(phi), sp = std::sin(phi);
+  const double la = lb[a], lbb = lb[b];
+  lb[a] = cp * la + sp * lbb;
+  lb[b] = -sp * la + cp * lbb;
+}
+
+// Free rotation of a rigid body over dt at constant world angular momentum: the
+// symmetric splitting of Dullweber, Leimkuhler & McLachlan (1997) into exact rotations
+// about the principal axes (1/2, 2/2, 3, 2/2, 1/2). It is symplectic and keeps the
+// world angular momentum exactly; the energy error stays bounded, of order (omega dt)^2.
+inline void free_rotation(Eigen::Quaterniond& q, const Eigen::Vector3d& L,
+                          const Eigen::Vector3d& inertia, double dt) {
+  Eigen::Vector3d lb = q.conjugate() * L;
+  const int order[5] = {0, 1, 2, 1, 0};
+  const double frac[5] = {0.5, 0.5, 1.0, 0.5, 0.5};
+  for (int s = 0; s < 5; ++s) {
+    const int k = order[s];
+    rotate_about_body_axis(q, lb, k, frac[s] * dt * lb[k] / inertia[k]);
+  }
+  q.normalize();
+}
+
+}  // namespace
+
+template <int D>
+double place_members(World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  auto& P = world.particles;
+  const auto& C = world.clumps;
+  double vmax2 = 0.0;
+  if (C.size() == 0) return vmax2;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const std::uint32_t c = P.clump[i];
+    if (c == kNoClump) continue;
+    const Vec arm = Clumps<D>::rotate(C.orient[c], P.body_offset[i]);
+    P.pos[i] = C.pos[c] + arm;
+    P.vel[i] = C.vel[c] + Dim<D>::cross(C.angvel[c], arm);
+    P.angvel[i] = C.angvel[c];
+    vmax2 = std::max(vmax2, P.vel[i].squaredNorm());
+  }
+  return vmax2;
+}
+
+template <int D>
+double integrate_clumps(World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  auto& P = world.particles;
+  auto& C = world.clumps;
+  const std::size_t nc = C.size();
+  if (nc == 0) return 0.0;
+  for (std::size_t c = 0; c < nc; ++c) {
+    C.force[c].setZero();
+    C.torque[c] = Dim<D>::zero_rot();
+  }
+  // Resultants about each centre of mass. When the contact stage measured the fabric
+  // stress with member centres as the grains' centres, the clump's own centre replaces
+  // them: add (X - x_m) (x) F_m for each member m (docs/physics.md, "Clumps").
+  auto& fabric = world.stats.fabric_stress;
+  const bool measure = world.measure_this_step;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const std::uint32_t c = P.clump[i];
+    if (c == kNoClump) continue;
+    const Vec arm = P.pos[i] - C.pos[c];
+    C.force[c] += P.force[i];
+    C.torque[c] += P.torque[i] + Dim<D>::cross(arm, P.force[i]);
+    if (measure) fabric -= arm * P.force[i].transpose();
+  }
+  const double dt = world.dt, alpha = world.local_damping;
+  const Vec g = world.gravity;
+  for (std::size_t c = 0; c < nc; ++c) {
+    Vec a = C.force[c] * C.inv_mass[c] + g;
+    if (alpha > 0.0)
+      for (int k = 0; k < D; ++k) a[k] = damped(a[k], C.vel[c][k] + 0.5 * dt * a[k], alpha);
+    C.vel[c] += a * dt;
+    C.pos[c] += C.vel[c] * dt;
+    if constexpr (D == 2) {
+      double aw = C.torque[c] / C.inertia[c];
+      if (alpha > 0.0) aw = damped(aw, C.angvel[c] + 0.5 * dt * aw, alpha);
+      C.angvel[c] += aw * dt;
+      C.orient[c] += C.angvel[c] * dt;
+    } else {
+      Vec t = C.torque[c];
+      if (alpha > 0.0)
+        for (int k = 0; k < 3; ++k) t[k] = damped(t[k], C.angvel[c][k], alpha);
+      C.angmom[c] += t * dt;
+      free_rotation(C.orient[c], C.angmom[c], C.inertia[c], dt);
+      const Vec lb = C.orient[c].conjugate() * C.angmom[c];
+      C.angvel[c] = C.orient[c] * Vec(lb.cwiseQuotient(C.inertia[c]));
+    }
+  }
+  return place_members(world);
+}
+
+template <int D>
+std::size_t add_clump(World<D>& world, const ResolvedClump<D>& t, const typename Dim<D>::Vec& x,
+                      const typename Dim<D>::Orient& q, double scale, double density,
+                      std::uint16_t material, const typename Dim<D>::Vec& v) {
+  using Vec = typename Dim<D>::Vec;
+  auto& P = world.particles;
+  auto& C = world.clumps;
+  if (P.clump.empty()) {
+    P.clump.assign(P.size(), kNoClump);
+    P.body_offset.assign(P.size(), Vec::Zero());
+  }
+  const double mass = density * t.volume * std::pow(scale, D);
+  const typename Dim<D>::Rot inertia = density * std::pow(scale, D + 2) * t.principal;
+  const std::size_t c = C.size();
+  C.pos.push_back(x);
+  C.vel.push_back(v);
+  C.angvel.push_back(Dim<D>::zero_rot());
+  C.angmom.push_back(Dim<D>::zero_rot());
+  C.orient.push_back(q);
+  C.force.push_back(Vec::Zero());
+  C.torque.push_back(Dim<D>::zero_rot());
+  C.inv_mass.push_back(1.0 / mass);
+  C.inertia.push_back(inertia);
+  C.volume.push_back(t.volume * std::pow(scale, D));
+  for (std::size_t m = 0; m < t.offset.size(); ++m) {
+    const Vec off = scale * t.offset[m];
+    const std::size_t i = P.add(x + Clumps<D>::rotate(q, off), scale * t.radius[m], density,
+                                material, v);
+    // Contact laws that need a mass (viscous damping) and the first time-step estimate
+    // see the clump's.
+    P.inv_mass[i] = 1.0 / mass;
+    P.inv_inertia[i] = 1.0 / Clumps<D>::min_moment(inertia);
+    P.flags[i] |= kClumpMember;
+    P.clump[i] = static_cast<std::uint32_t>(c);
+    P.body_offset[i] = off;
+  }
+  world.rebuild_needed = true;
+  return c;
+}
+
+template <>
+Dim<2>::Orient random_orientation<2>(double u1, double, double) {
+  return 2.0 * std::numbers::pi * u1;
+}
+// Shoemake's uniform random unit quaternion from three uniform numbers in [0, 1).
+template <>
+Dim<3>::Orient random_orientation<3>(double u1, double u2, double u3) {
+  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1), t1 = 2.0 * std::numbers::pi * u2,
+               t2 = 2.0 * std::numbers::pi * u3;
+  return Eigen::Quaterniond(b * std::cos(t2), a * std::sin(t1), a * std::cos(t1),
+                            b * std::sin(t2));
+}
+
+template double integrate_clumps<2>(World<2>&);
+template double integrate_clumps<3>(World<3>&);
+template double place_members<2>(World<2>&);
+template double place_members<3>(World<3>&);
+template std::size_t add_clump<2>(World<2>&, const ResolvedClump<2>&, const Dim<2>::Vec&,
+                                  const Dim<2>::Orient&, double, double, std::uint16_t,
+                                  const Dim<2>::Vec&);
+template std::size_t add_clump<3>(World<3>&, const ResolvedClump<3>&, const Dim<3>::Vec&,
+                                  const Dim<3>::Orient&, double, double, std::uint16_t,
+                                  const Dim<3>::Vec&);
+
+}  // namespace geodem

@@ -1,0 +1,87 @@
+// Rigid clumps: bodies whose members are grains of Particles (so that the contact
+// stage, the neighbour search and the outputs see members as ordinary discs/spheres).
+// A member carries its clump index and its offset in the clump's body frame; each step
+// the members' forces are summed onto the clump, the clump is integrated as one rigid
+// body (clumps/clump_dynamics.cpp) and the members are placed back on it.
+// Members of one clump never touch each other (the neighbour search skips such pairs).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "clumps/clump_template.hpp"
+#include "core/dim.hpp"
+
+namespace geodem {
+
+inline constexpr std::uint32_t kNoClump = 0xffffffffu;
+
+template <int D>
+struct Clumps {
+  using Vec = typename Dim<D>::Vec;
+  using Rot = typename Dim<D>::Rot;
+  using Orient = typename Dim<D>::Orient;
+
+  std::vector<Vec> pos;     // centre of mass
+  std::vector<Vec> vel;     // at the half step, as for grains
+  std::vector<Rot> angvel;  // world frame, at the half step
+  // 3D: angular momentum in the world frame (half step), the integrated quantity; the
+  // angular velocity follows from it and the orientation. Unused in 2D.
+  std::vector<Rot> angmom;
+  std::vector<Orient> orient;  // body frame (principal axes) to world
+  std::vector<Vec> force;
+  std::vector<Rot> torque;
+  std::vector<double> inv_mass;
+  std::vector<Rot> inertia;    // principal moments (2D: the polar moment)
+  std::vector<double> volume;  // of the union of the members (overlaps once)
+
+  std::size_t size() const { return pos.size(); }
+
+  // Body-to-world rotation of a body-frame vector.
+  static Vec rotate(const Orient& q, const Vec& v) {
+    if constexpr (D == 2) {
+      const double c = std::cos(q), s = std::sin(q);
+      return Vec(c * v.x() - s * v.y(), s * v.x() + c * v.y());
+    } else {
+      return q * v;
+    }
+  }
+  static double min_moment(const Rot& i) {
+    if constexpr (D == 2) {
+      return i;
+    } else {
+      return i.minCoeff();
+    }
+  }
+
+  // Homothetic scaling by m about each centre of mass (radius-growth compaction);
+  // the members' offsets and radii are scaled by the caller with the other grains.
+  void scale(double m) {
+    const double mass_factor = std::pow(m, D), inertia_factor = std::pow(m, D + 2);
+    for (std::size_t c = 0; c < size(); ++c) {
+      inv_mass[c] /= mass_factor;
+      inertia[c] *= inertia_factor;
+      volume[c] *= mass_factor;
+      if constexpr (D == 3) angmom[c] *= inertia_factor;  // keeps the angular velocity
+    }
+  }
+};
+
+template <int D>
+struct World;
+
+// Adds a clump of template `t` scaled by `scale`, centre of mass at `x`, orientation
+// `q` (body to world), of the given density and material. Returns the clump index.
+template <int D>
+std::size_t add_clump(World<D>& world, const ResolvedClump<D>& t, const typename Dim<D>::Vec& x,
+                      const typename Dim<D>::Orient& q, double scale, double density,
+                      std::uint16_t material,
+                      const typename Dim<D>::Vec& v = Dim<D>::Vec::Zero());
+
+// Random orientation, uniform over rotations (2D: an angle in [0, 2 pi)).
+template <int D>
+typename Dim<D>::Orient random_orientation(double u1, double u2, double u3);
+
+}  // namespace geodem

@@ -1,0 +1,34 @@
+#include "contacts/bonds.hpp"
+
+#include <algorithm>
+
+#include "broadphase/neighbour_search.hpp"
+
+namespace geodem {
+
+template <int D>
+std::size_t create_bonds(World<D>& world, double gap_tolerance) {
+  world.update_contact_extras();
+  if (!world.contact_extras) return 0;
+  auto& L = world.nlist;
+  const auto& P = world.particles;
+  if (world.rebuild_needed || L.start.size() != P.size() + 1 || L.extra.size() != L.other.size())
+    build_neighbour_list(world);
+  std::size_t created = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+      const std::uint32_t j = L.other[k];
+      if (!world.pair_law(P.material[i], P.material[j]).cohesive() || L.extra[k].bonded) continue;
+      const double gap = (P.pos[j] - P.pos[i]).norm() - P.radius[i] - P.radius[j];
+      if (gap > gap_tolerance * std::min(P.radius[i], P.radius[j])) continue;
+      L.extra[k].bonded = 1;
+      ++created;
+    }
+  }
+  return created;
+}
+
+template std::size_t create_bonds<2>(World<2>&, double);
+template std::size_t create_bonds<3>(World<3>&, double);
+
+}  // namespace geodem
