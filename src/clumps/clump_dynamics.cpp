@@ -121,10 +121,6 @@ std::size_t add_clump(World<D>& world, const ResolvedClump<D>& t, const typename
   using Vec = typename Dim<D>::Vec;
   auto& P = world.particles;
   auto& C = world.clumps;
-  if (P.clump.empty()) {
-    P.clump.assign(P.size(), kNoClump);
-    P.body_offset.assign(P.size(), Vec::Zero());
-  }
   const double mass = density * t.volume * std::pow(scale, D);
   const typename Dim<D>::Rot inertia = density * std::pow(scale, D + 2) * t.principal;
   const std::size_t c = C.size();
@@ -142,6 +138,9 @@ std::size_t add_clump(World<D>& world, const ResolvedClump<D>& t, const typename
     const Vec off = scale * t.offset[m];
     const std::size_t i = P.add(x + Clumps<D>::rotate(q, off), scale * t.radius[m], density,
                                 material, v);
+    // The first member ever switches the membership arrays on for every grain.
+    P.clump.resize(P.size(), kNoClump);
+    P.body_offset.resize(P.size(), Vec::Zero());
     // Contact laws that need a mass (viscous damping) and the first time-step estimate
     // see the clump's.
     P.inv_mass[i] = 1.0 / mass;

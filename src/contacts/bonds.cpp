@@ -20,7 +20,8 @@ std::size_t create_bonds(World<D>& world, double gap_tolerance) {
       const std::uint32_t j = L.other[k];
       if (!world.pair_law(P.material[i], P.material[j]).cohesive() || L.extra[k].bonded) continue;
       const double gap = (P.pos[j] - P.pos[i]).norm() - P.radius[i] - P.radius[j];
-      if (gap > gap_tolerance * std::min(P.radius[i], P.radius[j])) continue;
+      // 1e-12: grains placed touching may be apart by rounding.
+      if (gap > (gap_tolerance + 1e-12) * std::min(P.radius[i], P.radius[j])) continue;
       L.extra[k].bonded = 1;
       ++created;
     }

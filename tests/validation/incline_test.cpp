@@ -4,6 +4,8 @@
 //   a = g sin(theta) / (1 + f)     (5/7 g sin(theta) sphere, 2/3 g sin(theta) disc);
 // above that it slides with a = g (sin(theta) - mu cos(theta)).
 //
+// With rolling resistance (tests at the end), the threshold moves to tan(theta) = eta.
+//
 // The grain starts touching the plane and first settles on it with gravity along the
 // plane's normal and local damping; then gravity turns vertical and damping off. The
 // tangential spring starts unloaded, so its force oscillates (undamped) about the mean;
@@ -33,14 +35,18 @@ struct InclineResult {
   double slip;        // contact-point speed / centre speed at the end
 };
 
+// `eta`: rolling friction of grain and plane (0: none).
 template <int D>
-InclineResult run_incline(double theta, double mu) {
+InclineResult run_incline(double theta, double mu, double eta = 0.0) {
   World<D> w;
   const double m = kDensity * Dim<D>::volume(kRadius);
   // Stiff: static overlap 1e-5 R, so the lever arm is R.
   const double kn = m * kG / (1e-5 * kRadius);
-  const auto grain = add_material(w, linear_material(kn, 0.5 * kn, mu, 0.5, kDensity));
-  const auto plane = add_material(w, linear_material(kn, 0.5 * kn, 10.0, 1.0, kDensity, "plane"));
+  Material gm = linear_material(kn, 0.5 * kn, mu, 0.5, kDensity);
+  Material pm = linear_material(kn, 0.5 * kn, 10.0, 1.0, kDensity, "plane");
+  gm.rolling_friction = pm.rolling_friction = eta;
+  const auto grain = add_material(w, gm);
+  const auto plane = add_material(w, pm);
   const Vec<D> n = vec<D>(std::sin(theta), std::cos(theta));
   const Vec<D> downhill = vec<D>(std::cos(theta), -std::sin(theta));
   add_plane(w, Vec<D>::Zero(), n, plane, "incline");
@@ -109,6 +115,35 @@ TYPED_TEST(Incline, SlidesAboveThreshold) {
   EXPECT_LT(rel_err(r.accel, a_want), 0.01);
   EXPECT_LT(rel_err(r.spin_accel, alpha_want), 0.01);
   EXPECT_GT(r.slip, 0.3);
+}
+
+// Rolling resistance: the rolling moment is limited to eta fn R (R = r against a wall).
+// At rest the moment must balance m g sin(theta) R about the centre (the friction force
+// carries the downhill weight), so the grain stays put while tan(theta) < eta; above,
+// the moment is eta m g cos(theta) R and it rolls with
+//   a = g (sin(theta) - eta cos(theta)) / (1 + f).
+TYPED_TEST(Incline, RollingResistanceHoldsBelowThreshold) {
+  constexpr int D = TypeParam::value;
+  const double eta = 0.2, theta = std::atan(0.8 * eta);
+  const InclineResult r = run_incline<D>(theta, 1.0, eta);
+  const double a_free = kG * std::sin(theta) / (1.0 + Dim<D>::inertia_factor());
+  report(std::to_string(D) + "D rolling resistance below threshold: a / a_free",
+         std::abs(r.accel) / a_free);
+  EXPECT_LT(std::abs(r.accel), 1e-3 * a_free);
+  EXPECT_LT(std::abs(r.spin_accel) * kRadius, 1e-3 * a_free);
+}
+
+TYPED_TEST(Incline, RollingResistanceRollsAboveThreshold) {
+  constexpr int D = TypeParam::value;
+  const double eta = 0.2, theta = std::atan(1.5 * eta);
+  const InclineResult r = run_incline<D>(theta, 1.0, eta);
+  const double f = Dim<D>::inertia_factor();
+  const double a_want = kG * (std::sin(theta) - eta * std::cos(theta)) / (1.0 + f);
+  report(std::to_string(D) + "D rolling resistance above threshold: acceleration",
+         rel_err(r.accel, a_want));
+  EXPECT_LT(rel_err(r.accel, a_want), 0.01);
+  EXPECT_LT(rel_err(r.spin_accel, a_want / kRadius), 0.01);
+  EXPECT_LT(r.slip, 0.01);
 }
 
 }  // namespace
