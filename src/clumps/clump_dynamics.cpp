@@ -13,15 +13,37 @@ inline double damped(double a, double v, double alpha) {
   return a - std::copysign(alpha * std::abs(a), v);
 }
 
-// Rotation of the body by angle `phi` about its own principal axis k: the orientation
+// Rotation of the body by angle `phi` about its own principal axis K: the orientation
 // composes on the right, and the body-frame angular momentum turns the other way.
-inline void rotate_about_body_axis(Eigen::Quaterniond& q, Eigen::Vector3d& lb, int k, double phi) {
-  const double c = std::cos(0.5 * phi), s = std::sin(0.5 * phi);
-  Eigen::Quaterniond r(c, 0.0, 0.0, 0.0);
-  r.vec()[k] = s;
-  q = q * r;
-  const int a = (k + 1) % 3, b = (k + 2) % 3;
-  const double cp = std::cos(phi), sp = std::sin(phi);
+// The angles are tiny in DEM (|omega| dt ~ 1e-4): below 1e-3 rad the half-angle cosine
+// and sine come from their Taylor series (the first term left out is below 1e-21), the
+// full angle's from the double-angle formulas, sparing the library calls that would
+// dominate the cost.
+template <int K>
+inline void rotate_about_body_axis(Eigen::Quaterniond& q, Eigen::Vector3d& lb, double phi) {
+  constexpr int a = (K + 1) % 3, b = (K + 2) % 3;
+  const double h = 0.5 * phi;
+  double c, s;
+  if (std::abs(h) < 1e-3) {
+    const double h2 = h * h;
+    c = 1.0 - h2 * (0.5 - h2 * (1.0 / 24.0));
+    s = h * (1.0 - h2 * ((1.0 / 6.0) - h2 * (1.0 / 120.0)));
+  } else {
+    c = std::cos(h);
+    s = std::sin(h);
+  }
+  // q <- q (c + s e_K): with p = q's vector part and w its scalar part,
+  // w' = c w - s p_K, p' = c p + s (w e_K + p x e_K).
+  const double w = q.w();
+  Eigen::Vector3d p = q.vec();
+  const double pa = p[a], pb = p[b];
+  q.w() = c * w - s * p[K];
+  p *= c;
+  p[K] += s * w;
+  p[a] += s * pb;  // (p x e_K)_a = p_b
+  p[b] -= s * pa;  // (p x e_K)_b = -p_a
+  q.vec() = p;
+  const double cp = 1.0 - 2.0 * s * s, sp = 2.0 * s * c;
   const double la = lb[a], lbb = lb[b];
   lb[a] = cp * la + sp * lbb;
   lb[b] = -sp * la + cp * lbb;
@@ -31,16 +53,16 @@ inline void rotate_about_body_axis(Eigen::Quaterniond& q, Eigen::Vector3d& lb, i
 // symmetric splitting of Dullweber, Leimkuhler & McLachlan (1997) into exact rotations
 // about the principal axes (1/2, 2/2, 3, 2/2, 1/2). It is symplectic and keeps the
 // world angular momentum exactly; the energy error stays bounded, of order (omega dt)^2.
-inline void free_rotation(Eigen::Quaterniond& q, const Eigen::Vector3d& L,
-                          const Eigen::Vector3d& inertia, double dt) {
-  Eigen::Vector3d lb = q.conjugate() * L;
-  const int order[5] = {0, 1, 2, 1, 0};
-  const double frac[5] = {0.5, 0.5, 1.0, 0.5, 0.5};
-  for (int s = 0; s < 5; ++s) {
-    const int k = order[s];
-    rotate_about_body_axis(q, lb, k, frac[s] * dt * lb[k] / inertia[k]);
-  }
-  q.normalize();
+// `lb` enters as the body-frame angular momentum and leaves updated with `q`.
+inline void free_rotation(Eigen::Quaterniond& q, Eigen::Vector3d& lb,
+                          const Eigen::Vector3d& inv_inertia, double dt) {
+  const double h = 0.5 * dt;
+  rotate_about_body_axis<0>(q, lb, h * lb[0] * inv_inertia[0]);
+  rotate_about_body_axis<1>(q, lb, h * lb[1] * inv_inertia[1]);
+  rotate_about_body_axis<2>(q, lb, dt * lb[2] * inv_inertia[2]);
+  rotate_about_body_axis<1>(q, lb, h * lb[1] * inv_inertia[1]);
+  rotate_about_body_axis<0>(q, lb, h * lb[0] * inv_inertia[0]);
+  q.coeffs() *= 1.5 - 0.5 * q.squaredNorm();  // one Newton step back to |q| = 1
 }
 
 }  // namespace
@@ -48,14 +70,16 @@ inline void free_rotation(Eigen::Quaterniond& q, const Eigen::Vector3d& L,
 template <int D>
 double place_members(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
+  using Mat = Eigen::Matrix<double, D, D>;
   auto& P = world.particles;
   const auto& C = world.clumps;
   double vmax2 = 0.0;
   if (C.size() == 0) return vmax2;
+  const Mat* __restrict R = C.rotation.data();
   for (std::size_t i = 0; i < P.size(); ++i) {
     const std::uint32_t c = P.clump[i];
     if (c == kNoClump) continue;
-    const Vec arm = Clumps<D>::rotate(C.orient[c], P.body_offset[i]);
+    const Vec arm = R[c] * P.body_offset[i];
     P.pos[i] = C.pos[c] + arm;
     P.vel[i] = C.vel[c] + Dim<D>::cross(C.angvel[c], arm);
     P.angvel[i] = C.angvel[c];
@@ -97,18 +121,36 @@ double integrate_clumps(World<D>& world) {
     C.vel[c] += a * dt;
     C.pos[c] += C.vel[c] * dt;
     if constexpr (D == 2) {
-      double aw = C.torque[c] / C.inertia[c];
+      double aw = C.torque[c] * C.inv_inertia[c];
       if (alpha > 0.0) aw = damped(aw, C.angvel[c] + 0.5 * dt * aw, alpha);
       C.angvel[c] += aw * dt;
-      C.orient[c] += C.angvel[c] * dt;
+      const double turn = C.angvel[c] * dt;
+      C.orient[c] += turn;
+      // Compose the rotation matrix with the step's small turn (Taylor series of cos and
+      // sin, exact to rounding below 1e-2 rad; one Newton step keeps c^2 + s^2 = 1).
+      auto& R = C.rotation[c];
+      if (std::abs(turn) < 1e-2) {
+        const double t2 = turn * turn;
+        const double co = 1.0 - t2 * (0.5 - t2 * (1.0 / 24.0 - t2 / 720.0));
+        const double si = turn * (1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0 - t2 / 5040.0)));
+        double c0 = R(0, 0), s0 = R(1, 0);
+        const double c1 = c0 * co - s0 * si, s1 = s0 * co + c0 * si;
+        const double fix = 1.5 - 0.5 * (c1 * c1 + s1 * s1);
+        c0 = c1 * fix, s0 = s1 * fix;
+        R << c0, -s0, s0, c0;
+      } else {
+        R = Clumps<D>::matrix(C.orient[c]);
+      }
     } else {
       Vec t = C.torque[c];
       if (alpha > 0.0)
         for (int k = 0; k < 3; ++k) t[k] = damped(t[k], C.angvel[c][k], alpha);
       C.angmom[c] += t * dt;
-      free_rotation(C.orient[c], C.angmom[c], C.inertia[c], dt);
-      const Vec lb = C.orient[c].conjugate() * C.angmom[c];
-      C.angvel[c] = C.orient[c] * Vec(lb.cwiseQuotient(C.inertia[c]));
+      Vec lb = C.rotation[c].transpose() * C.angmom[c];
+      const Vec& inv_inertia = C.inv_inertia[c];
+      free_rotation(C.orient[c], lb, inv_inertia, dt);
+      C.rotation[c] = C.orient[c].toRotationMatrix();
+      C.angvel[c] = C.rotation[c] * Vec(lb.cwiseProduct(inv_inertia));
     }
   }
   return place_members(world);
@@ -129,14 +171,19 @@ std::size_t add_clump(World<D>& world, const ResolvedClump<D>& t, const typename
   C.angvel.push_back(Dim<D>::zero_rot());
   C.angmom.push_back(Dim<D>::zero_rot());
   C.orient.push_back(q);
+  C.rotation.push_back(Clumps<D>::matrix(q));
   C.force.push_back(Vec::Zero());
   C.torque.push_back(Dim<D>::zero_rot());
   C.inv_mass.push_back(1.0 / mass);
   C.inertia.push_back(inertia);
+  if constexpr (D == 2)
+    C.inv_inertia.push_back(1.0 / inertia);
+  else
+    C.inv_inertia.push_back(inertia.cwiseInverse());
   C.volume.push_back(t.volume * std::pow(scale, D));
   for (std::size_t m = 0; m < t.offset.size(); ++m) {
     const Vec off = scale * t.offset[m];
-    const std::size_t i = P.add(x + Clumps<D>::rotate(q, off), scale * t.radius[m], density,
+    const std::size_t i = P.add(x + Clumps<D>::matrix(q) * off, scale * t.radius[m], density,
                                 material, v);
     // The first member ever switches the membership arrays on for every grain.
     P.clump.resize(P.size(), kNoClump);

@@ -31,21 +31,25 @@ struct Clumps {
   // angular velocity follows from it and the orientation. Unused in 2D.
   std::vector<Rot> angmom;
   std::vector<Orient> orient;  // body frame (principal axes) to world
+  // The same as a matrix, kept up to date by the integration: placing members then
+  // costs a matrix product, not trigonometry (2D) or quaternion algebra (3D).
+  std::vector<Eigen::Matrix<double, D, D>> rotation;
   std::vector<Vec> force;
   std::vector<Rot> torque;
   std::vector<double> inv_mass;
-  std::vector<Rot> inertia;    // principal moments (2D: the polar moment)
+  std::vector<Rot> inertia;      // principal moments (2D: the polar moment)
+  std::vector<Rot> inv_inertia;  // their inverses
   std::vector<double> volume;  // of the union of the members (overlaps once)
 
   std::size_t size() const { return pos.size(); }
 
-  // Body-to-world rotation of a body-frame vector.
-  static Vec rotate(const Orient& q, const Vec& v) {
+  // Body-to-world rotation matrix of an orientation.
+  static Eigen::Matrix<double, D, D> matrix(const Orient& q) {
     if constexpr (D == 2) {
       const double c = std::cos(q), s = std::sin(q);
-      return Vec(c * v.x() - s * v.y(), s * v.x() + c * v.y());
+      return (Eigen::Matrix2d() << c, -s, s, c).finished();
     } else {
-      return q * v;
+      return q.toRotationMatrix();
     }
   }
   static double min_moment(const Rot& i) {
@@ -63,6 +67,7 @@ struct Clumps {
     for (std::size_t c = 0; c < size(); ++c) {
       inv_mass[c] /= mass_factor;
       inertia[c] *= inertia_factor;
+      inv_inertia[c] /= inertia_factor;
       volume[c] *= mass_factor;
       if constexpr (D == 3) angmom[c] *= inertia_factor;  // keeps the angular velocity
     }

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "clumps/grain_mix.hpp"
+#include "contacts/bonds.hpp"
 #include "controllers/axial_strain_rate.hpp"
 #include "controllers/radius_growth.hpp"
 #include "controllers/stress_servo.hpp"
@@ -83,16 +85,20 @@ struct Lab {
     box = LabBox<D>::add_to(w, Vec::Zero(), size, 1);
     w.resolve_pair_laws();
     Random rng(s.seed);
-    const double mean =
-        mean_radius_for_porosity<D>(size.prod(), s.count, s.initial_porosity, s.radius_fuzz);
-    std::vector<Sphere<D>> grains;
     try {
-      grains = random_cloud<D>(Vec::Zero(), size, s.count, mean, s.radius_fuzz, rng);
+      if (s.grains.round_only()) {
+        const double mean =
+            mean_radius_for_porosity<D>(size.prod(), s.count, s.initial_porosity, s.radius_fuzz);
+        const auto grains = random_cloud<D>(Vec::Zero(), size, s.count, mean, s.radius_fuzz, rng);
+        w.particles.reserve(grains.size());
+        for (const auto& g : grains) w.particles.add(g.centre, g.radius, s.grain.density, 0);
+      } else {
+        add_random_grains<D>(w, resolve_kinds<D>(s.grains), Vec::Zero(), size, s.count,
+                             s.initial_porosity, s.radius_fuzz, s.grain.density, 0, rng);
+      }
     } catch (const std::runtime_error& e) {
       throw InputError(s.file, 0, "sample.initial_porosity", e.what());
     }
-    w.particles.reserve(grains.size());
-    for (const auto& g : grains) w.particles.add(g.centre, g.radius, s.grain.density, 0);
     w.auto_dt = true;
     w.dt_safety = s.dt_safety;
     w.dt_update_interval = s.dt_update_interval;
@@ -148,6 +154,7 @@ struct Lab {
                  unb < s.unbalanced_tolerance;
         }))
       throw std::runtime_error("the sample did not stabilise after the friction reduction");
+    if (s.bonds_create == "after_compaction") prep["bonds"] = create_bonds(w, s.bond_gap_tolerance);
     prep["porosity"] = porosity();
     prep["mean_stress"] = box.mean_stress(w);
     prep["steps"] = w.step;
@@ -175,6 +182,8 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
   if (D == 3) cols.push_back("sigma2");
   for (const char* c : {"sigma3", "p", "q", "porosity", "coordination", "unbalanced"})
     cols.push_back(c);
+  const bool bonds = s.bonds_create != "none";
+  if (bonds) cols.insert(cols.end(), {"bonds", "broken_bonds"});
   HistoryCsv history;
   history.open(opt.out_dir + "/history.csv", cols);
   VtkSeries<D> vtk(opt.out_dir);
@@ -200,6 +209,9 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     if (!lab.run_until("consolidation", s.max_compaction_steps, 200, consolidated))
       throw std::runtime_error("the sample did not consolidate to " + format_number(sigma3) +
                                " Pa");
+    std::size_t bonds_made = 0;
+    if (s.bonds_create == "before_shear") bonds_made = create_bonds(w, s.bond_gap_tolerance);
+    const std::uint64_t broken0 = w.broken_bonds;
     const double porosity0 = lab.porosity();
     // Compression: axial wall strain-controlled, lateral walls servo-controlled.
     w.controllers.clear();
@@ -235,6 +247,10 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
         for (double v :
              {s3, p, s1 - s3, lab.porosity(), coordination_number(w), unbalanced_force_ratio(w)})
           row.push_back(v);
+        if (bonds) {
+          row.push_back(static_cast<double>(intact_bonds(w)));
+          row.push_back(static_cast<double>(w.broken_bonds - broken0));
+        }
         history.row(row);
         curve.axial_strain.push_back(eps);
         curve.volumetric_strain.push_back(ev);
@@ -263,6 +279,12 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     r["poisson_ratio"] = sp.poisson_ratio;
     r["dilatancy_deg"] = sp.dilatancy_deg;
     r["steps"] = w.step;
+    if (bonds) {
+      r["bonds_at_start"] = s.bonds_create == "before_shear" ? bonds_made
+                                                              : intact_bonds(w) + (w.broken_bonds - broken0);
+      r["bonds_broken"] = w.broken_bonds - broken0;
+    }
+    r["grains"] = body_count(w);
     tests.push_back(r);
     // Peak principal stresses for the envelope.
     std::size_t ip = 0;

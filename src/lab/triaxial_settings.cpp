@@ -32,7 +32,7 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
   s.count = static_cast<std::size_t>(sample->integer("count", 1000, 2, 50'000'000));
   s.radius_fuzz = sample->in_range("radius_fuzz", 0.3333, 0.0, 0.95);
   s.initial_porosity = sample->in_range("initial_porosity", 0.95, 0.5, 0.999);
-  sample->choice("grain", D == 3 ? "sphere" : "disc", {"sphere", "disc"});
+  s.grains = read_grain_spec(r, *sample, s.dimension);
   sample->finish();
 
   auto mat = r.table("material");
@@ -44,6 +44,24 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
   mat->finish();
   s.wall = s.grain;
   s.wall.name = "walls";
+  // Lab walls are smooth and inert: no rolling resistance, no cohesion.
+  s.wall.rolling_friction = s.wall.twisting_friction = 0.0;
+  s.wall.normal_cohesion = s.wall.shear_cohesion = 0.0;
+  {
+    const bool cohesive = s.grain.normal_cohesion > 0.0 || s.grain.shear_cohesion > 0.0;
+    auto b = r.table("bonds");
+    TableReader* bt = b ? &*b : nullptr;
+    const std::string fallback = cohesive ? "after_compaction" : "none";
+    s.bonds_create = bt ? bt->choice("create", fallback, {"none", "after_compaction", "before_shear"})
+                        : fallback;
+    if (bt) {
+      s.bond_gap_tolerance = bt->in_range("gap_tolerance", 0.0, 0.0, 0.5);
+      if (s.bonds_create != "none" && !cohesive)
+        bt->fail("create", "bonds need material.normal_cohesion or material.shear_cohesion > 0");
+      bt->finish();
+    }
+    s.resolved["bonds"]["create"] = s.bonds_create;
+  }
   if (auto w = r.table("walls")) {
     s.wall.friction = tan_deg(w->in_range("friction_deg", 0.0, 0.0, 89.0));
     w->finish();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "clumps/grain_mix.hpp"
 #include "io/toml_reader.hpp"
 #include "materials/material.hpp"
 
@@ -22,8 +23,12 @@ struct TriaxialSettings {
   std::size_t count = 1000;
   double radius_fuzz = 0.3333;
   double initial_porosity = 0.95;
+  GrainSpec grains;  // grain = "..." or [[sample.grains]]; [[templates]]
   // [material], [walls]
   Material grain, wall;
+  // [bonds]: when cohesive bonds are made ("none", "after_compaction", "before_shear")
+  std::string bonds_create = "none";
+  double bond_gap_tolerance = 0.0;
   // [time]
   double dt_safety = 0.8;
   int dt_update_interval = 10;

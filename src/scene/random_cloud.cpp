@@ -22,11 +22,19 @@ template <int D>
 std::vector<Sphere<D>> random_cloud(const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
                                     std::size_t count, double mean_radius, double fuzz, Random& rng,
                                     const std::vector<Sphere<D>>& existing) {
-  using Vec = typename Dim<D>::Vec;
-  std::vector<double> radii(count);
+    std::vector<double> radii(count);
   for (auto& r : radii) r = mean_radius * (1.0 + fuzz * (2.0 * rng.uniform() - 1.0));
   std::sort(radii.begin(), radii.end(), std::greater<>());
-  const double rmax = radii.empty() ? mean_radius : radii.front();
+  return place_random<D>(lo, hi, radii, rng, existing);
+}
+
+template <int D>
+std::vector<Sphere<D>> place_random(const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
+                                    const std::vector<double>& radii, Random& rng,
+                                    const std::vector<Sphere<D>>& existing) {
+  using Vec = typename Dim<D>::Vec;
+  const std::size_t count = radii.size();
+  const double rmax = radii.empty() ? 0.0 : *std::max_element(radii.begin(), radii.end());
 
   // Grid of cells of size 2 rmax over the box; each cell lists the grains in it.
   double emax = 0.0;
@@ -99,6 +107,12 @@ template std::vector<Sphere<2>> random_cloud<2>(const Dim<2>::Vec&, const Dim<2>
                                                 const std::vector<Sphere<2>>&);
 template std::vector<Sphere<3>> random_cloud<3>(const Dim<3>::Vec&, const Dim<3>::Vec&, std::size_t,
                                                 double, double, Random&,
+                                                const std::vector<Sphere<3>>&);
+template std::vector<Sphere<2>> place_random<2>(const Dim<2>::Vec&, const Dim<2>::Vec&,
+                                                const std::vector<double>&, Random&,
+                                                const std::vector<Sphere<2>>&);
+template std::vector<Sphere<3>> place_random<3>(const Dim<3>::Vec&, const Dim<3>::Vec&,
+                                                const std::vector<double>&, Random&,
                                                 const std::vector<Sphere<3>>&);
 template double mean_radius_for_porosity<2>(double, std::size_t, double, double);
 template double mean_radius_for_porosity<3>(double, std::size_t, double, double);

@@ -22,6 +22,13 @@ std::vector<Sphere<D>> random_cloud(const typename Dim<D>::Vec& lo, const typena
                                     std::size_t count, double mean_radius, double fuzz, Random& rng,
                                     const std::vector<Sphere<D>>& existing = {});
 
+// Places spheres of the given radii, in the given order (largest first packs best),
+// at random inside [lo, hi] without overlap; returns them in the same order.
+template <int D>
+std::vector<Sphere<D>> place_random(const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
+                                    const std::vector<double>& radii, Random& rng,
+                                    const std::vector<Sphere<D>>& existing = {});
+
 // Mean radius that gives `porosity` for `count` grains with radii mean*(1 +- fuzz) in a
 // box of volume `volume`: uses E[r^3] = mean^3 (1 + fuzz^2) (3D), E[r^2] = mean^2 (1 + fuzz^2/3)
 // (2D).

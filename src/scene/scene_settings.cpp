@@ -43,6 +43,14 @@ Material read_material(TableReader& t, const std::string& fallback_name) {
     m.young = t.positive("young", 1e7);
     m.poisson = t.in_range("poisson", 0.25, -0.99, 0.499);
   }
+  m.rolling_friction = t.non_negative("rolling_friction", 0.0);
+  m.twisting_friction = t.non_negative("twisting_friction", 0.0);
+  m.rolling_stiffness = t.positive("rolling_stiffness", 1.0);
+  m.normal_cohesion = t.non_negative("normal_cohesion", 0.0);
+  m.shear_cohesion = t.non_negative("shear_cohesion", 0.0);
+  m.cohesion_as_force = t.choice("cohesion_unit", "stress", {"stress", "force"}) == "force";
+  if ((m.normal_cohesion > 0.0 || m.shear_cohesion > 0.0) && m.law != LawKind::kLinear)
+    t.fail("normal_cohesion", "contact cohesion needs law = \"linear\"");
   return m;
 }
 

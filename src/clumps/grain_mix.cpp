@@ -1,0 +1,158 @@
+#include "clumps/grain_mix.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "clumps/clumps.hpp"
+#include "scene/random_cloud.hpp"
+
+namespace geodem {
+
+namespace {
+bool is_round(const std::string& shape) {
+  return shape == "sphere" || shape == "disc";
+}
+}  // namespace
+
+bool GrainSpec::round_only() const {
+  return kinds.size() == 1 && is_round(kinds[0].shape);
+}
+
+GrainSpec read_grain_spec(TableReader& root, TableReader& sample, int dimension) {
+  GrainSpec spec;
+  const std::size_t row = static_cast<std::size_t>(dimension) + 1;
+  for (auto& t : root.tables("templates")) {
+    TemplateSpec ts;
+    ts.name = t.string("name", "");
+    if (ts.name.empty()) t.fail("name", "a template needs a name");
+    if (is_round(ts.name)) t.fail("name", "'" + ts.name + "' is the round grain's name");
+    ts.members = t.number_rows("members", row);
+    if (ts.members.empty())
+      t.fail("members", "expected rows [x, y," + std::string(dimension == 3 ? " z," : "") +
+                            " radius] (one per member)");
+    for (const auto& m : ts.members)
+      if (!(m.back() > 0.0)) t.fail("members", "member radii must be positive");
+    t.finish();
+    spec.templates.push_back(ts);
+  }
+  std::vector<std::string> known = builtin_clump_template_names();
+  for (const auto& t : spec.templates) known.push_back(t.name);
+  auto check = [&](TableReader& t, const std::string& key, const std::string& shape) {
+    if (std::find(known.begin(), known.end(), shape) != known.end()) return;
+    std::string list;
+    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+    t.fail(key, "unknown grain '" + shape + "'; expected one of: " + list);
+  };
+  auto mix = sample.tables("grains");
+  if (!mix.empty()) {
+    if (sample.has("grain")) sample.fail("grain", "give either 'grain' or [[...grains]], not both");
+    spec.kinds.clear();
+    for (auto& t : mix) {
+      GrainKind k;
+      k.shape = t.string("shape", dimension == 3 ? "sphere" : "disc");
+      check(t, "shape", k.shape);
+      k.size = t.positive("size", 1.0);
+      k.fraction = t.positive("fraction", 1.0);
+      t.finish();
+      spec.kinds.push_back(k);
+    }
+  } else {
+    spec.kinds[0].shape = sample.string("grain", dimension == 3 ? "sphere" : "disc");
+    check(sample, "grain", spec.kinds[0].shape);
+  }
+  return spec;
+}
+
+template <int D>
+std::vector<ResolvedKind<D>> resolve_kinds(const GrainSpec& spec) {
+  using Vec = typename Dim<D>::Vec;
+  std::vector<ResolvedKind<D>> out;
+  double total = 0.0;
+  for (const auto& k : spec.kinds) total += k.fraction;
+  for (const auto& k : spec.kinds) {
+    ResolvedKind<D> r;
+    r.size = k.size;
+    r.fraction = k.fraction / total;
+    r.round = is_round(k.shape);
+    ClumpTemplate<D> t;
+    if (r.round || builtin_clump_template<D>(k.shape, t)) {
+      if (r.round) builtin_clump_template<D>("sphere", t);
+    } else {
+      const auto it = std::find_if(spec.templates.begin(), spec.templates.end(),
+                                   [&](const TemplateSpec& s) { return s.name == k.shape; });
+      if (it == spec.templates.end()) throw std::invalid_argument("unknown grain " + k.shape);
+      t.name = k.shape;
+      for (const auto& m : it->members) {
+        Vec c;
+        for (int a = 0; a < D; ++a) c[a] = m[static_cast<std::size_t>(a)];
+        t.centre.push_back(c);
+        t.radius.push_back(m.back());
+      }
+    }
+    r.clump = resolve_clump(t);
+    out.push_back(r);
+  }
+  return out;
+}
+
+template <int D>
+double add_random_grains(World<D>& world, const std::vector<ResolvedKind<D>>& kinds,
+                         const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
+                         std::size_t count, double porosity, double fuzz, double density,
+                         std::uint16_t material, Random& rng) {
+  // Counts per kind: rounded fractions, the last kind takes the remainder.
+  std::vector<std::size_t> counts(kinds.size(), 0);
+  std::size_t assigned = 0;
+  for (std::size_t k = 0; k + 1 < kinds.size(); ++k) {
+    counts[k] = static_cast<std::size_t>(std::llround(kinds[k].fraction * static_cast<double>(count)));
+    assigned += counts[k];
+  }
+  counts.back() = count > assigned ? count - assigned : 0;
+  // E[(1 + fuzz u)^D] for u uniform in [-1, 1].
+  const double moment = D == 3 ? 1.0 + fuzz * fuzz : 1.0 + fuzz * fuzz / 3.0;
+  double unit_solid = 0.0;
+  for (std::size_t k = 0; k < kinds.size(); ++k)
+    unit_solid += static_cast<double>(counts[k]) * kinds[k].clump.volume * std::pow(kinds[k].size, D) * moment;
+  const double box = (hi - lo).prod();
+  const double mean = std::pow((1.0 - porosity) * box / unit_solid, 1.0 / D);
+  struct Pending {
+    double bound, scale;
+    std::size_t kind;
+  };
+  std::vector<Pending> grains;
+  grains.reserve(count);
+  for (std::size_t k = 0; k < kinds.size(); ++k)
+    for (std::size_t g = 0; g < counts[k]; ++g) {
+      const double s = mean * kinds[k].size * (1.0 + fuzz * (2.0 * rng.uniform() - 1.0));
+      grains.push_back({s * kinds[k].clump.bounding_radius, s, k});
+    }
+  std::stable_sort(grains.begin(), grains.end(),
+                   [](const Pending& a, const Pending& b) { return a.bound > b.bound; });
+  std::vector<double> bounds(grains.size());
+  for (std::size_t g = 0; g < grains.size(); ++g) bounds[g] = grains[g].bound;
+  const auto placed = place_random<D>(lo, hi, bounds, rng);
+  world.particles.reserve(world.particles.size() + grains.size() * 2);
+  for (std::size_t g = 0; g < grains.size(); ++g) {
+    const auto& kind = kinds[grains[g].kind];
+    if (kind.round) {
+      world.particles.add(placed[g].centre, grains[g].scale, density, material);
+    } else {
+      const auto q = random_orientation<D>(rng.uniform(), rng.uniform(), rng.uniform());
+      add_clump(world, kind.clump, placed[g].centre, q, grains[g].scale, density, material);
+    }
+  }
+  return mean;
+}
+
+template std::vector<ResolvedKind<2>> resolve_kinds<2>(const GrainSpec&);
+template std::vector<ResolvedKind<3>> resolve_kinds<3>(const GrainSpec&);
+template double add_random_grains<2>(World<2>&, const std::vector<ResolvedKind<2>>&,
+                                     const Dim<2>::Vec&, const Dim<2>::Vec&, std::size_t, double,
+                                     double, double, std::uint16_t, Random&);
+template double add_random_grains<3>(World<3>&, const std::vector<ResolvedKind<3>>&,
+                                     const Dim<3>::Vec&, const Dim<3>::Vec&, std::size_t, double,
+                                     double, double, std::uint16_t, Random&);
+
+}  // namespace geodem

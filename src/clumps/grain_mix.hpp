@@ -1,0 +1,57 @@
+// The grains of a sample: one shape, or a mix of shapes (round grains or clump
+// templates) by size and number fraction, as read from a scenario, and the random
+// loose cloud of them that a lab test or a scene starts from.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "clumps/clump_template.hpp"
+#include "core/random.hpp"
+#include "core/world.hpp"
+#include "io/toml_reader.hpp"
+
+namespace geodem {
+
+struct GrainKind {
+  std::string shape = "sphere";  // "sphere"/"disc" (round) or a clump template name
+  double size = 1.0;             // relative scale of this kind
+  double fraction = 1.0;         // number fraction (normalised over the kinds)
+};
+
+struct TemplateSpec {
+  std::string name;
+  std::vector<std::vector<double>> members;  // rows x, y, (z,) r
+};
+
+struct GrainSpec {
+  std::vector<GrainKind> kinds{GrainKind{}};
+  std::vector<TemplateSpec> templates;  // user templates ([[templates]])
+  bool round_only() const;
+};
+
+// Reads `grain = "<shape>"` or `[[<table>.grains]]` (shape, size, fraction) from `sample`
+// and the `[[templates]]` (name, members) of the root table.
+GrainSpec read_grain_spec(TableReader& root, TableReader& sample, int dimension);
+
+// A kind ready to place: its template at unit scale (one member of radius 1 for round).
+template <int D>
+struct ResolvedKind {
+  bool round = true;
+  ResolvedClump<D> clump;
+  double size = 1.0, fraction = 1.0;
+};
+
+template <int D>
+std::vector<ResolvedKind<D>> resolve_kinds(const GrainSpec& spec);
+
+// Adds `count` grains at random without overlap in [lo, hi] (bounding spheres), sizes
+// uniform in scale*(1 +- fuzz) per kind with the mean scale set so that the solid
+// fraction is 1 - porosity; clumps get random orientations. Returns the mean scale.
+template <int D>
+double add_random_grains(World<D>& world, const std::vector<ResolvedKind<D>>& kinds,
+                         const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
+                         std::size_t count, double porosity, double fuzz, double density,
+                         std::uint16_t material, Random& rng);
+
+}  // namespace geodem
