@@ -13,8 +13,8 @@ namespace {
 // Both rows are sorted by partner index: one linear merge.
 template <typename T, typename Dropped>
 void merge_history(const std::uint32_t* old_other, const T* old_value, std::size_t old_n,
-                   const std::uint32_t* new_other, T* new_value, std::size_t new_n,
-                   const T& zero, Dropped&& dropped) {
+                   const std::uint32_t* new_other, T* new_value, std::size_t new_n, const T& zero,
+                   Dropped&& dropped) {
   std::size_t a = 0;
   for (std::size_t b = 0; b < new_n; ++b) {
     while (a < old_n && old_other[a] < new_other[b]) dropped(old_value[a++]);
@@ -251,8 +251,8 @@ void build_neighbour_list(World<D>& world) {
   L.spring.resize(L.other.size());
   L.wall_spring.resize(L.wall.size());
   const bool extras = world.contact_extras;
-  const bool old_extras = have_old && old.extra.size() == old.other.size() &&
-                          old.wall_extra.size() == old.wall.size();
+  const bool old_extras =
+      have_old && old.extra.size() == old.other.size() && old.wall_extra.size() == old.wall.size();
   L.extra.resize(extras ? L.other.size() : 0);
   L.wall_extra.resize(extras ? L.wall.size() : 0);
   const ContactExtra<D> no_extra{};
@@ -273,8 +273,8 @@ void build_neighbour_list(World<D>& world) {
       if (extras && old_extras) {
         merge_history(old.other.data() + ob, old.extra.data() + ob, on, L.other.data() + nb,
                       L.extra.data() + nb, nn, no_extra, drop_extra);
-        merge_history(old.wall.data() + owb, old.wall_extra.data() + owb, own,
-                      L.wall.data() + wb, L.wall_extra.data() + wb, wn, no_extra, drop_nothing);
+        merge_history(old.wall.data() + owb, old.wall_extra.data() + owb, own, L.wall.data() + wb,
+                      L.wall_extra.data() + wb, wn, no_extra, drop_nothing);
       }
     } else {
       for (std::size_t k = 0; k < nn; ++k) L.spring[nb + k] = Vec::Zero();

@@ -183,8 +183,8 @@ std::size_t add_clump(World<D>& world, const ResolvedClump<D>& t, const typename
   C.volume.push_back(t.volume * std::pow(scale, D));
   for (std::size_t m = 0; m < t.offset.size(); ++m) {
     const Vec off = scale * t.offset[m];
-    const std::size_t i = P.add(x + Clumps<D>::matrix(q) * off, scale * t.radius[m], density,
-                                material, v);
+    const std::size_t i =
+        P.add(x + Clumps<D>::matrix(q) * off, scale * t.radius[m], density, material, v);
     // The first member ever switches the membership arrays on for every grain.
     P.clump.resize(P.size(), kNoClump);
     P.body_offset.resize(P.size(), Vec::Zero());
@@ -209,8 +209,7 @@ template <>
 Dim<3>::Orient random_orientation<3>(double u1, double u2, double u3) {
   const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1), t1 = 2.0 * std::numbers::pi * u2,
                t2 = 2.0 * std::numbers::pi * u3;
-  return Eigen::Quaterniond(b * std::cos(t2), a * std::sin(t1), a * std::cos(t1),
-                            b * std::sin(t2));
+  return Eigen::Quaterniond(b * std::cos(t2), a * std::sin(t1), a * std::cos(t1), b * std::sin(t2));
 }
 
 template double integrate_clumps<2>(World<2>&);

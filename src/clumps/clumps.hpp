@@ -39,7 +39,7 @@ struct Clumps {
   std::vector<double> inv_mass;
   std::vector<Rot> inertia;      // principal moments (2D: the polar moment)
   std::vector<Rot> inv_inertia;  // their inverses
-  std::vector<double> volume;  // of the union of the members (overlaps once)
+  std::vector<double> volume;    // of the union of the members (overlaps once)
 
   std::size_t size() const { return pos.size(); }
 
@@ -82,8 +82,7 @@ struct World;
 template <int D>
 std::size_t add_clump(World<D>& world, const ResolvedClump<D>& t, const typename Dim<D>::Vec& x,
                       const typename Dim<D>::Orient& q, double scale, double density,
-                      std::uint16_t material,
-                      const typename Dim<D>::Vec& v = Dim<D>::Vec::Zero());
+                      std::uint16_t material, const typename Dim<D>::Vec& v = Dim<D>::Vec::Zero());
 
 // Random orientation, uniform over rotations (2D: an angle in [0, 2 pi)).
 template <int D>

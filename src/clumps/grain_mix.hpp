@@ -10,6 +10,7 @@
 #include "core/random.hpp"
 #include "core/world.hpp"
 #include "io/toml_reader.hpp"
+#include "scene/random_cloud.hpp"
 
 namespace geodem {
 
@@ -30,9 +31,21 @@ struct GrainSpec {
   bool round_only() const;
 };
 
-// Reads `grain = "<shape>"` or `[[<table>.grains]]` (shape, size, fraction) from `sample`
-// and the `[[templates]]` (name, members) of the root table.
-GrainSpec read_grain_spec(TableReader& root, TableReader& sample, int dimension);
+// Reads the `[[templates]]` (name, members) of the root table.
+std::vector<TemplateSpec> read_templates(TableReader& root, int dimension);
+
+// Checks that `shape` names a round grain, a built-in template or one of `templates`.
+void check_shape(TableReader& t, const std::string& key, const std::string& shape,
+                 const std::vector<TemplateSpec>& templates);
+
+// Reads `grain = "<shape>"` or `[[<table>.grains]]` (shape, size, fraction) from `sample`.
+GrainSpec read_grain_spec(TableReader& sample, int dimension,
+                          const std::vector<TemplateSpec>& templates);
+
+// The template of one shape name, at unit scale (round grains: one member of radius 1).
+template <int D>
+ResolvedClump<D> resolve_shape(const std::string& shape,
+                               const std::vector<TemplateSpec>& templates);
 
 // A kind ready to place: its template at unit scale (one member of radius 1 for round).
 template <int D>
@@ -47,11 +60,15 @@ std::vector<ResolvedKind<D>> resolve_kinds(const GrainSpec& spec);
 
 // Adds `count` grains at random without overlap in [lo, hi] (bounding spheres), sizes
 // uniform in scale*(1 +- fuzz) per kind with the mean scale set so that the solid
-// fraction is 1 - porosity; clumps get random orientations. Returns the mean scale.
+// fraction is 1 - porosity (or the given mean_scale when > 0); clumps get random
+// orientations. `placed` (optional): bounding spheres to keep clear of, to which the new
+// grains' are appended. Returns the mean scale.
 template <int D>
 double add_random_grains(World<D>& world, const std::vector<ResolvedKind<D>>& kinds,
                          const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
                          std::size_t count, double porosity, double fuzz, double density,
-                         std::uint16_t material, Random& rng);
+                         std::uint16_t material, Random& rng,
+                         const typename Dim<D>::Vec& velocity = Dim<D>::Vec::Zero(),
+                         double mean_scale = 0.0, std::vector<Sphere<D>>* placed = nullptr);
 
 }  // namespace geodem

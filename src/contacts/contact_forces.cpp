@@ -83,8 +83,8 @@ void grain_pairs(World<D>& world) {
         f = contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt, spring[k], fn);
       } else {
         bool broken;
-        f = bonded_contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt,
-                                    spring[k], fn, broken);
+        f = bonded_contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt, spring[k],
+                                    fn, broken);
         if (broken) {
           extra[k].bonded = 0;
           ++world.broken_bonds;
@@ -102,8 +102,8 @@ void grain_pairs(World<D>& world) {
       torque[j] -= aj * tq;
       if constexpr (Extras) {
         if (law.rolling()) {
-          const Rot m = rolling_moment<D>(law, tangential_stiffness(law, ri, rj, delta), ri, rj, nrm,
-                                          Rot(angvel[j] - wi), dt, fn, extra[k]);
+          const Rot m = rolling_moment<D>(law, tangential_stiffness(law, ri, rj, delta), ri, rj,
+                                          nrm, Rot(angvel[j] - wi), dt, fn, extra[k]);
           torque[j] += m;
           ti -= m;
         }
@@ -171,8 +171,9 @@ void grain_walls(World<D>& world) {
       if constexpr (Extras) {
         if (law.rolling()) {
           // The wall does not rotate: wrel = -w_grain; the grain is body 1.
-          const auto m = rolling_moment<D>(law, tangential_stiffness(law, ri, wall_partner_radius(law, ri), delta), ri, kWallRadius, nrm,
-                                           -P.angvel[i], dt, fn, L.wall_extra[k]);
+          const auto m = rolling_moment<D>(
+              law, tangential_stiffness(law, ri, wall_partner_radius(law, ri), delta), ri,
+              kWallRadius, nrm, -P.angvel[i], dt, fn, L.wall_extra[k]);
           P.torque[i] -= m;
         }
       }

@@ -118,8 +118,8 @@ inline typename Dim<D>::Vec bonded_contact_force(const PairLaw& p, double r1, do
   using Vec = typename Dim<D>::Vec;
   const double vn = vrel.dot(n);
   const double kn = p.linear_kn(r1, r2), kt = p.linear_kt(kn);
-  const double cn = (p.beta > 0.0 && inv_msum > 0.0) ? 2.0 * p.beta * std::sqrt(kn / inv_msum)
-                                                     : 0.0;
+  const double cn =
+      (p.beta > 0.0 && inv_msum > 0.0) ? 2.0 * p.beta * std::sqrt(kn / inv_msum) : 0.0;
   const double fn = kn * delta - cn * vn;
   keep_in_tangent_plane(spring, n);
   spring -= (kt * dt) * (vrel - vn * n);

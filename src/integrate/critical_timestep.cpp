@@ -61,9 +61,7 @@ double critical_timestep(const World<D>& world) {
   K.reset(n + C.size());
   // The body a grain's contacts load, and the lever from its centre to a contact point.
   const bool clumps = !P.clump.empty();
-  auto body = [&](std::size_t i) {
-    return clumps && P.clump[i] != kNoClump ? n + P.clump[i] : i;
-  };
+  auto body = [&](std::size_t i) { return clumps && P.clump[i] != kNoClump ? n + P.clump[i] : i; };
   auto lever = [&](std::size_t i, const Vec& to_contact) -> Vec {
     const Vec l = P.radius[i] * to_contact;
     return clumps && P.clump[i] != kNoClump ? Vec(P.pos[i] + l - C.pos[P.clump[i]]) : l;

@@ -43,12 +43,17 @@ struct Lab {
   Lab(const TriaxialSettings& settings, const RunOptions& options)
       : s(settings), opt(options), progress(options.quiet) {}
 
-  double porosity() const {
-    return 1.0 - solid_volume(w) / box.volume(w);
-  }
+  double porosity() const { return 1.0 - solid_volume(w) / box.volume(w); }
   double grain_friction_deg() const { return std::atan(w.pair_law(0, 0).mu) / kDeg; }
+  // Sets the grain-grain friction (entry (0, 0) of the pair table). Rolling and twisting
+  // friction follow in proportion, so that the friction reduction of the compaction
+  // lowers all of them together and the test values come back with the friction.
   void set_grain_friction_deg(double deg) {
-    w.pair_laws[0].mu = std::tan(deg * kDeg);  // grain-grain: entry (0, 0)
+    PairLaw& law = w.pair_laws[0];
+    law.mu = std::tan(deg * kDeg);
+    const double ratio = s.grain.friction > 0.0 ? law.mu / s.grain.friction : 1.0;
+    law.roll_mu = s.grain.rolling_friction * ratio;
+    law.twist_mu = s.grain.twisting_friction * ratio;
   }
 
   // Steps with measurement every `every` steps; stops when `done()` holds on a
@@ -280,8 +285,9 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     r["dilatancy_deg"] = sp.dilatancy_deg;
     r["steps"] = w.step;
     if (bonds) {
-      r["bonds_at_start"] = s.bonds_create == "before_shear" ? bonds_made
-                                                              : intact_bonds(w) + (w.broken_bonds - broken0);
+      r["bonds_at_start"] = s.bonds_create == "before_shear"
+                                ? bonds_made
+                                : intact_bonds(w) + (w.broken_bonds - broken0);
       r["bonds_broken"] = w.broken_bonds - broken0;
     }
     r["grains"] = body_count(w);

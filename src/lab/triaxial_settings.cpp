@@ -32,7 +32,7 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
   s.count = static_cast<std::size_t>(sample->integer("count", 1000, 2, 50'000'000));
   s.radius_fuzz = sample->in_range("radius_fuzz", 0.3333, 0.0, 0.95);
   s.initial_porosity = sample->in_range("initial_porosity", 0.95, 0.5, 0.999);
-  s.grains = read_grain_spec(r, *sample, s.dimension);
+  s.grains = read_grain_spec(*sample, s.dimension, read_templates(r, s.dimension));
   sample->finish();
 
   auto mat = r.table("material");
@@ -52,8 +52,9 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
     auto b = r.table("bonds");
     TableReader* bt = b ? &*b : nullptr;
     const std::string fallback = cohesive ? "after_compaction" : "none";
-    s.bonds_create = bt ? bt->choice("create", fallback, {"none", "after_compaction", "before_shear"})
-                        : fallback;
+    s.bonds_create =
+        bt ? bt->choice("create", fallback, {"none", "after_compaction", "before_shear"})
+           : fallback;
     if (bt) {
       s.bond_gap_tolerance = bt->in_range("gap_tolerance", 0.0, 0.0, 0.5);
       if (s.bonds_create != "none" && !cohesive)

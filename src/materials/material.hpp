@@ -4,8 +4,8 @@
 // pair so the force loop only reads a small flat table: no virtual call per contact.
 #pragma once
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numbers>

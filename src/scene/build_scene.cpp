@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
+#include "clumps/grain_mix.hpp"
 #include "core/error.hpp"
 #include "core/random.hpp"
 #include "scene/random_cloud.hpp"
@@ -186,9 +188,37 @@ void build_world(const SceneSettings& s, World<D>& world) {
     });
   }
   Random rng(s.seed);
+  for (const auto& c : s.clumps) {
+    const auto m = material_index(s.materials, c.material);
+    typename Dim<D>::Orient q;
+    const double angle = c.angle_deg * std::numbers::pi / 180.0;
+    if constexpr (D == 2)
+      q = angle;
+    else
+      q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, to_vec<3>(c.axis).normalized()));
+    const auto shape = resolve_shape<D>(c.shape, s.templates);
+    add_clump(world, shape, to_vec<D>(c.position), q, c.scale, s.materials[m].density, m,
+              to_vec<D>(c.velocity));
+    placed.push_back({to_vec<D>(c.position), c.scale * shape.bounding_radius});
+  }
   for (std::size_t c = 0; c < s.clouds.size(); ++c) {
     const auto& cl = s.clouds[c];
     const Vec lo = to_vec<D>(cl.lo), hi = to_vec<D>(cl.hi);
+    if (cl.shape != "sphere" && cl.shape != "disc") {
+      // Clumps: random orientations; bounding spheres kept apart.
+      GrainSpec spec;
+      spec.templates = s.templates;
+      spec.kinds[0].shape = cl.shape;
+      const auto m = material_index(s.materials, cl.material);
+      try {
+        add_random_grains<D>(world, resolve_kinds<D>(spec), lo, hi, cl.count, cl.porosity, cl.fuzz,
+                             s.materials[m].density, m, rng, to_vec<D>(cl.velocity), cl.radius,
+                             &placed);
+      } catch (const std::runtime_error& e) {
+        throw InputError(s.file, 0, "clouds." + std::to_string(c), e.what());
+      }
+      continue;
+    }
     const double mean = cl.radius > 0.0 ? cl.radius
                                         : mean_radius_for_porosity<D>((hi - lo).prod(), cl.count,
                                                                       cl.porosity, cl.fuzz);

@@ -22,7 +22,7 @@ template <int D>
 std::vector<Sphere<D>> random_cloud(const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
                                     std::size_t count, double mean_radius, double fuzz, Random& rng,
                                     const std::vector<Sphere<D>>& existing) {
-    std::vector<double> radii(count);
+  std::vector<double> radii(count);
   for (auto& r : radii) r = mean_radius * (1.0 + fuzz * (2.0 * rng.uniform() - 1.0));
   std::sort(radii.begin(), radii.end(), std::greater<>());
   return place_random<D>(lo, hi, radii, rng, existing);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contacts/bonds.hpp"
 #include "core/error.hpp"
 #include "core/step.hpp"
 #include "io/output_files.hpp"
@@ -37,6 +38,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   World<D> w;
   build_world<D>(s, w);
   prepare_output_dir(opt.out_dir);
+  const std::size_t bonds_created = s.bonds_initial ? create_bonds(w, s.bond_gap_tolerance) : 0;
 
   std::optional<Box<D>> box;
   if (s.output.measure_box) {
@@ -49,6 +51,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   std::vector<std::string> cols = {"step",         "time",           "wall_s",
                                    "dt",           "kinetic_energy", "unbalanced",
                                    "coordination", "contacts",       "wall_contacts"};
+  if (s.bonds_initial) cols.insert(cols.end(), {"bonds", "broken_bonds"});
   if (box) cols.push_back("porosity");
   for (int a = 0; a < D; ++a)
     for (int b = a; b < D; ++b) cols.push_back(std::string("stress_") + axis(a) + axis(b));
@@ -72,6 +75,10 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
                                coordination_number(w),
                                static_cast<double>(w.stats.contacts),
                                static_cast<double>(w.stats.wall_contacts)};
+    if (s.bonds_initial) {
+      row.push_back(static_cast<double>(intact_bonds(w)));
+      row.push_back(static_cast<double>(w.broken_bonds));
+    }
     const Box<D> vb = box ? *box : grains_box(w);
     if (box) row.push_back(porosity_in_box(w, *box));
     const auto sigma = average_stress(w, vb.volume());
@@ -137,6 +144,11 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   results["steps"] = w.step;
   results["dt"] = w.dt;
   results["particles"] = w.particles.size();
+  results["clumps"] = w.clumps.size();
+  if (s.bonds_initial) {
+    results["bonds_created"] = bonds_created;
+    results["bonds_broken"] = w.broken_bonds;
+  }
   if (status == "completed") {
     results["kinetic_energy"] = kinetic_energy(w);
     results["unbalanced"] =

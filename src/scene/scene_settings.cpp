@@ -190,8 +190,31 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     t.finish();
   }
 
+  s.templates = read_templates(r, s.dimension);
+  for (auto& t : r.tables("clumps")) {
+    ClumpSpec c;
+    c.shape = t.string("template", "");
+    if (c.shape.empty()) t.fail("template", "missing; expected a clump template name");
+    check_shape(t, "template", c.shape, s.templates);
+    c.position = vec(t, "position", zero);
+    c.velocity = vec(t, "velocity", zero);
+    c.scale = t.positive("scale", 1.0);
+    c.angle_deg = t.number("angle_deg", 0.0);
+    c.axis = D == 3 ? vec(t, "axis", List{0.0, 0.0, 1.0}) : List{};
+    c.material = material_name(t, "material");
+    s.clumps.push_back(c);
+    t.finish();
+  }
+  if (auto b = r.table("bonds")) {
+    s.bonds_initial = b->choice("create", "initial", {"none", "initial"}) == "initial";
+    s.bond_gap_tolerance = b->in_range("gap_tolerance", 0.0, 0.0, 0.5);
+    b->finish();
+  }
+
   for (auto& t : r.tables("clouds")) {
     CloudSpec c;
+    c.shape = t.string("grain", D == 3 ? "sphere" : "disc");
+    check_shape(t, "grain", c.shape, s.templates);
     c.lo = vec(t, "min", zero);
     c.hi = vec(t, "max", zero);
     for (std::size_t k = 0; k < D; ++k)
@@ -236,8 +259,8 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     s.particle_files.push_back(f);
     t.finish();
   }
-  if (s.particles.empty() && s.clouds.empty() && s.particle_files.empty())
-    r.fail("particles", "the scene has no grains: add [[particles]] or [[clouds]]");
+  if (s.particles.empty() && s.clouds.empty() && s.particle_files.empty() && s.clumps.empty())
+    r.fail("particles", "the scene has no grains: add [[particles]], [[clumps]] or [[clouds]]");
 
   if (auto t = r.table("output")) {
     s.output.history_every =

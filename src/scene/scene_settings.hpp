@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "clumps/grain_mix.hpp"
 #include "io/toml_reader.hpp"
 #include "materials/material.hpp"
 
@@ -36,7 +37,17 @@ struct ParticleSpec {
   bool fixed = false;
 };
 
+// One clump placed explicitly.
+struct ClumpSpec {
+  std::string shape;  // template name
+  List position, velocity, axis;
+  double scale = 1.0;
+  double angle_deg = 0.0;  // 2D: about z; 3D: about `axis`
+  std::string material;
+};
+
 struct CloudSpec {
+  std::string shape;  // "sphere"/"disc" or a clump template
   List lo, hi, velocity;
   std::size_t count = 0;
   double radius = 0.0;  // mean radius; 0: from porosity
@@ -90,6 +101,10 @@ struct SceneSettings {
   std::vector<PairSpec> pairs;
   std::vector<WallSpec> walls;
   std::vector<ParticleSpec> particles;
+  std::vector<TemplateSpec> templates;
+  std::vector<ClumpSpec> clumps;
+  bool bonds_initial = false;  // [bonds] create = "initial": bond touching grains at the start
+  double bond_gap_tolerance = 0.0;
   std::vector<CloudSpec> clouds;
   std::vector<ParticleFileSpec> particle_files;
   OutputSpec output;

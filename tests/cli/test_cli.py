@@ -153,6 +153,74 @@ class CliTest(unittest.TestCase):
         self.assertEqual(r.returncode, 2)
         self.assertEqual(run("run").returncode, 2)
 
+    def test_clumps_bonds_and_rolling_in_a_scene(self):
+        text = scene(3).replace("friction = 0.5", """friction = 0.5
+rolling_friction = 0.1
+normal_cohesion = 1e4
+shear_cohesion = 1e4""") + """
+[[templates]]
+name = "tri"
+members = [[0, 0, 0, 0.004], [0.005, 0, 0, 0.003], [0.002, 0.004, 0, 0.003]]
+[[clumps]]
+template = "tri"
+position = [0.05, 0.05, 0.2]
+axis = [1, 0, 0]
+angle_deg = 30
+[[particles]]
+position = [0.0, 0.5, 0.5]
+radius = 0.01
+[[particles]]
+position = [0.02, 0.5, 0.5]
+radius = 0.01
+[bonds]
+create = "initial"
+"""
+        text = text.replace("[[clouds]]", "[[clouds]]\ngrain = \"pair_0.9\"").replace(
+            "count = 50\nradius = 0.004", "count = 20\nradius = 0.002")
+        out = self.dir / "out"
+        r = run("run", self.write(text), "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = json.loads((out / "summary.json").read_text())["results"]
+        self.assertEqual(res["clumps"], 21)
+        self.assertEqual(res["particles"], 2 + 3 + 40)
+        self.assertEqual(res["bonds_created"], 1)  # the two touching grains
+        with open(out / "history.csv") as f:
+            header = next(csv.reader(f))
+        self.assertIn("bonds", header)
+        self.assertIn("broken_bonds", header)
+        vtu = (out / "vtk" / "particles_000001.vtu").read_bytes()
+        self.assertIn(b'Name="clump"', vtu)
+
+    def test_clump_input_errors(self):
+        self.assertBadInput(scene(3).replace("[[clouds]]", "[[clouds]]\ngrain = \"blob\""),
+                            "clouds.0.grain", "unknown grain 'blob'", "pair_0.9")
+        self.assertBadInput(scene(3) + "[[templates]]\nname = \"t\"\nmembers = [[0, 0, 1]]\n",
+                            "templates.0.members")
+        self.assertBadInput(scene(3).replace('young = 1e6', 'law = "hertz"\nyoung = 1e6\n'
+                                             'normal_cohesion = 1.0'), "normal_cohesion",
+                            "linear")
+
+    def test_biaxial_with_clumps_and_bonds(self):
+        text = (ROOT / "examples" / "grain_shape2d" / "base.toml").read_text().format(
+            seed=1, grain="pair_0.9", friction=0.5, rolling=0.1, cohesion=5e4, porosity=0.25,
+            confining="[1e5]")
+        text = text.replace("count = 1000", "count = 150").replace("box = [1.0, 2.0]",
+                                                                    "box = [0.4, 0.8]")
+        text = text.replace("max_axial_strain = 0.10", "max_axial_strain = 0.01")
+        out = self.dir / "out"
+        r = run("run", self.write(text), "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = json.loads((out / "summary.json").read_text())
+        res = s["results"]
+        self.assertEqual(res["grains"], 150)
+        self.assertEqual(s["timing"]["particles"], 300)
+        self.assertGreater(res["preparation"]["bonds"], 100)
+        self.assertLessEqual(res["porosity_initial"], 0.26)
+        with open(out / "history.csv") as f:
+            rows = list(csv.DictReader(f))
+        self.assertGreater(float(rows[-1]["bonds"]), 0)
+        self.assertGreater(res["peak_q"], 0)
+
     def test_unstable_run_exits_3_and_keeps_outputs(self):
         text = scene(3).replace('step = "auto"', "step = 0.05").replace("duration = 0.05",
                                                                           "duration = 200.0")

@@ -104,12 +104,13 @@ TEST(ClumpMass, OverlappingSpheres) {
     return std::pow(r, 4) * u - 2 * r * r * u * u * u / 3 + std::pow(u, 5) / 5;
   };
   const double axial = kPi * (prim_axial(r) - prim_axial(-d / 2));  // 2 x int pi a^4/2
-  const double transverse = 2 * kPi * integrate_u(
-                                          [&](double u) {
-                                            const double a2 = r * r - u * u, x = u + d / 2;
-                                            return a2 * a2 / 4 + x * x * a2;
-                                          },
-                                          -d / 2, r, r);
+  const double transverse = 2 * kPi *
+                            integrate_u(
+                                [&](double u) {
+                                  const double a2 = r * r - u * u, x = u + d / 2;
+                                  return a2 * a2 / 4 + x * x * a2;
+                                },
+                                -d / 2, r, r);
   report("3D overlapping pair volume", rel_err(p.volume, volume));
   report("3D overlapping pair axial moment", rel_err(p.inertia(0, 0), axial));
   report("3D overlapping pair transverse moment", rel_err(p.inertia(1, 1), transverse));

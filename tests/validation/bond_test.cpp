@@ -102,8 +102,8 @@ TYPED_TEST(Bond, UnbondedGrainsDoNotPull) {
   w.resolve_pair_laws();
   EXPECT_FALSE(w.contact_extras);
   w.particles.add(Vec<D>::Zero(), kR, 2600.0, mat, Vec<D>::Zero(), Dim<D>::zero_rot(), true);
-  w.particles.add(Vec<D>(1.8 * kR * axis<D>(0)), 0.8 * kR, 2600.0, mat,
-                  Vec<D>(1e-3 * axis<D>(0)), Dim<D>::zero_rot(), true);
+  w.particles.add(Vec<D>(1.8 * kR * axis<D>(0)), 0.8 * kR, 2600.0, mat, Vec<D>(1e-3 * axis<D>(0)),
+                  Dim<D>::zero_rot(), true);
   w.dt = 1e-6;
   EXPECT_EQ(create_bonds(w), 0u);
   for (int k = 0; k < 100; ++k) step(w);

@@ -161,8 +161,8 @@ TYPED_TEST(Clump, ElasticCollisionConservesMomentaAndEnergy) {
   const double spin = std::sqrt(Dim<D>::rot_norm2(w.clumps.angvel[1]));
   EXPECT_GT(spin * s, 0.01);  // the impact did spin clump B
   const double pe = (momentum() - p0).norm() / p0.norm();
-  const double le = std::sqrt(Dim<D>::rot_norm2(ang_momentum() - l0)) /
-                    std::sqrt(Dim<D>::rot_norm2(l0));
+  const double le =
+      std::sqrt(Dim<D>::rot_norm2(ang_momentum() - l0)) / std::sqrt(Dim<D>::rot_norm2(l0));
   const double ee = rel_err(kinetic_energy(w), e0);
   report(std::to_string(D) + "D clump collision: momentum error", pe);
   report(std::to_string(D) + "D clump collision: angular momentum error", le);
