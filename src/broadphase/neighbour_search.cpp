@@ -1,5 +1,7 @@
 #include "broadphase/neighbour_search.hpp"
 
+#include "clumps/clump_dynamics.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -56,6 +58,7 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
   using Vec = typename Dim<D>::Vec;
   const std::size_t n = order.size();
   world.particles.permute(order);
+  sort_clumps_by_members(world);
   if (!have_old) return;
   static thread_local std::vector<std::uint32_t> inv, fill;
   inv.resize(n);

@@ -33,16 +33,14 @@ inline void rotate_about_body_axis(Eigen::Quaterniond& q, Eigen::Vector3d& lb, d
     s = std::sin(h);
   }
   // q <- q (c + s e_K): with p = q's vector part and w its scalar part,
-  // w' = c w - s p_K, p' = c p + s (w e_K + p x e_K).
-  const double w = q.w();
-  Eigen::Vector3d p = q.vec();
-  const double pa = p[a], pb = p[b];
-  q.w() = c * w - s * p[K];
-  p *= c;
-  p[K] += s * w;
-  p[a] += s * pb;  // (p x e_K)_a = p_b
-  p[b] -= s * pa;  // (p x e_K)_b = -p_a
-  q.vec() = p;
+  // w' = c w - s p_K, p' = c p + s (w e_K + p x e_K). Scalar code: the components are
+  // mixed across lanes, which packed arithmetic would only shuffle.
+  double* qc = q.coeffs().data();  // x, y, z, w
+  const double w = qc[3], pk = qc[K], pa = qc[a], pb = qc[b];
+  qc[3] = c * w - s * pk;
+  qc[K] = c * pk + s * w;
+  qc[a] = c * pa + s * pb;  // (p x e_K)_a = p_b
+  qc[b] = c * pb - s * pa;  // (p x e_K)_b = -p_a
   const double cp = 1.0 - 2.0 * s * s, sp = 2.0 * s * c;
   const double la = lb[a], lbb = lb[b];
   lb[a] = cp * la + sp * lbb;
@@ -65,7 +63,50 @@ inline void free_rotation(Eigen::Quaterniond& q, Eigen::Vector3d& lb,
   q.coeffs() *= 1.5 - 0.5 * q.squaredNorm();  // one Newton step back to |q| = 1
 }
 
+// The same for two bodies at once, interleaved (independent chains overlap in the CPU).
+inline void free_rotation_pair(Eigen::Quaterniond& q0, Eigen::Vector3d& lb0,
+                               const Eigen::Vector3d& ii0, Eigen::Quaterniond& q1,
+                               Eigen::Vector3d& lb1, const Eigen::Vector3d& ii1, double dt) {
+  const double h = 0.5 * dt;
+  rotate_about_body_axis<0>(q0, lb0, h * lb0[0] * ii0[0]);
+  rotate_about_body_axis<0>(q1, lb1, h * lb1[0] * ii1[0]);
+  rotate_about_body_axis<1>(q0, lb0, h * lb0[1] * ii0[1]);
+  rotate_about_body_axis<1>(q1, lb1, h * lb1[1] * ii1[1]);
+  rotate_about_body_axis<2>(q0, lb0, dt * lb0[2] * ii0[2]);
+  rotate_about_body_axis<2>(q1, lb1, dt * lb1[2] * ii1[2]);
+  rotate_about_body_axis<1>(q0, lb0, h * lb0[1] * ii0[1]);
+  rotate_about_body_axis<1>(q1, lb1, h * lb1[1] * ii1[1]);
+  rotate_about_body_axis<0>(q0, lb0, h * lb0[0] * ii0[0]);
+  rotate_about_body_axis<0>(q1, lb1, h * lb1[0] * ii1[0]);
+  q0.coeffs() *= 1.5 - 0.5 * q0.squaredNorm();
+  q1.coeffs() *= 1.5 - 0.5 * q1.squaredNorm();
+}
+
 }  // namespace
+
+template <int D>
+void sort_clumps_by_members(World<D>& world) {
+  auto& P = world.particles;
+  auto& C = world.clumps;
+  if (C.size() == 0) return;
+  static thread_local std::vector<std::uint32_t> order, new_index;
+  order.clear();
+  new_index.assign(C.size(), kNoClump);
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const std::uint32_t c = P.clump[i];
+    if (c == kNoClump || new_index[c] != kNoClump) continue;
+    new_index[c] = static_cast<std::uint32_t>(order.size());
+    order.push_back(c);
+  }
+  for (std::size_t c = 0; c < C.size(); ++c)  // clumps without members (none in practice)
+    if (new_index[c] == kNoClump) {
+      new_index[c] = static_cast<std::uint32_t>(order.size());
+      order.push_back(static_cast<std::uint32_t>(c));
+    }
+  C.permute(order);
+  for (auto& c : P.clump)
+    if (c != kNoClump) c = new_index[c];
+}
 
 template <int D>
 double place_members(World<D>& world) {
@@ -114,6 +155,8 @@ double integrate_clumps(World<D>& world) {
   }
   const double dt = world.dt, alpha = world.local_damping;
   const Vec g = world.gravity;
+  static thread_local std::vector<Vec> body_momentum;  // 3D: angular momentum, body frame
+  if constexpr (D == 3) body_momentum.resize(nc);
   for (std::size_t c = 0; c < nc; ++c) {
     Vec a = C.force[c] * C.inv_mass[c] + g;
     if (alpha > 0.0)
@@ -131,8 +174,9 @@ double integrate_clumps(World<D>& world) {
       auto& R = C.rotation[c];
       if (std::abs(turn) < 1e-2) {
         const double t2 = turn * turn;
-        const double co = 1.0 - t2 * (0.5 - t2 * (1.0 / 24.0 - t2 / 720.0));
-        const double si = turn * (1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0 - t2 / 5040.0)));
+        const double co = 1.0 - t2 * (0.5 - t2 * ((1.0 / 24.0) - t2 * (1.0 / 720.0)));
+        const double si =
+            turn * (1.0 - t2 * ((1.0 / 6.0) - t2 * ((1.0 / 120.0) - t2 * (1.0 / 5040.0))));
         double c0 = R(0, 0), s0 = R(1, 0);
         const double c1 = c0 * co - s0 * si, s1 = s0 * co + c0 * si;
         const double fix = 1.5 - 0.5 * (c1 * c1 + s1 * s1);
@@ -142,15 +186,25 @@ double integrate_clumps(World<D>& world) {
         R = Clumps<D>::matrix(C.orient[c]);
       }
     } else {
+      // Kick: world angular momentum; then its body-frame value for the free rotation.
       Vec t = C.torque[c];
       if (alpha > 0.0)
         for (int k = 0; k < 3; ++k) t[k] = damped(t[k], C.angvel[c][k], alpha);
       C.angmom[c] += t * dt;
-      Vec lb = C.rotation[c].transpose() * C.angmom[c];
-      const Vec& inv_inertia = C.inv_inertia[c];
-      free_rotation(C.orient[c], lb, inv_inertia, dt);
+      body_momentum[c] = C.rotation[c].transpose() * C.angmom[c];
+    }
+  }
+  if constexpr (D == 3) {
+    // Free rotations two clumps at a time: each is a long chain of dependent operations,
+    // and two independent chains side by side let the processor overlap them.
+    std::size_t c = 0;
+    for (; c + 1 < nc; c += 2)
+      free_rotation_pair(C.orient[c], body_momentum[c], C.inv_inertia[c], C.orient[c + 1],
+                         body_momentum[c + 1], C.inv_inertia[c + 1], dt);
+    if (c < nc) free_rotation(C.orient[c], body_momentum[c], C.inv_inertia[c], dt);
+    for (c = 0; c < nc; ++c) {
       C.rotation[c] = C.orient[c].toRotationMatrix();
-      C.angvel[c] = C.rotation[c] * Vec(lb.cwiseProduct(inv_inertia));
+      C.angvel[c] = C.rotation[c] * Vec(body_momentum[c].cwiseProduct(C.inv_inertia[c]));
     }
   }
   return place_members(world);
@@ -214,6 +268,8 @@ Dim<3>::Orient random_orientation<3>(double u1, double u2, double u3) {
 
 template double integrate_clumps<2>(World<2>&);
 template double integrate_clumps<3>(World<3>&);
+template void sort_clumps_by_members<2>(World<2>&);
+template void sort_clumps_by_members<3>(World<3>&);
 template double place_members<2>(World<2>&);
 template double place_members<3>(World<3>&);
 template std::size_t add_clump<2>(World<2>&, const ResolvedClump<2>&, const Dim<2>::Vec&,

@@ -11,6 +11,11 @@ namespace geodem {
 template <int D>
 double integrate_clumps(World<D>& world);
 
+// Renumbers clumps in the order of their first member, so that after grains are
+// renumbered in cell order, clumps are too and the member loops read them nearly in order.
+template <int D>
+void sort_clumps_by_members(World<D>& world);
+
 // Places every member at its clump's position and orientation and gives it the clump's
 // rigid velocity (v + omega x r). Used after adding clumps and after integration.
 template <int D>

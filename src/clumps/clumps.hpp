@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "clumps/clump_template.hpp"
@@ -58,6 +59,19 @@ struct Clumps {
     } else {
       return i.minCoeff();
     }
+  }
+
+  // Reorders every array: new index k holds the clump that had index order[k].
+  void permute(const std::vector<std::uint32_t>& order) {
+    auto apply = [&](auto& v) {
+      if (v.empty()) return;
+      std::remove_reference_t<decltype(v)> out(v.size());
+      for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
+      v.swap(out);
+    };
+    apply(pos), apply(vel), apply(angvel), apply(angmom), apply(orient), apply(rotation);
+    apply(force), apply(torque), apply(inv_mass), apply(inertia), apply(inv_inertia);
+    apply(volume);
   }
 
   // Homothetic scaling by m about each centre of mass (radius-growth compaction);

@@ -1,7 +1,8 @@
 // Grain mixes (clumps/grain_mix.cpp): the paper's mix of two-disc clumps, four small for
 // each large one twice the size, fills its box to the requested solid fraction (exactly,
 // without size fuzz, up to the mass-property integration error), with the right counts
-// and sizes, and members of different clumps do not overlap (their bounding circles/spheres do not).
+// and sizes, and members of different clumps do not overlap (their bounding circles/spheres do
+// not).
 #include <gtest/gtest.h>
 
 #include <map>
