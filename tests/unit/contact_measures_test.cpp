@@ -7,6 +7,7 @@
 #include <random>
 
 #include "broadphase/neighbour_search.hpp"
+#include "clumps/clump_dynamics.hpp"
 #include "core/error.hpp"
 #include "core/step.hpp"
 #include "integrate/critical_timestep.hpp"
@@ -122,6 +123,50 @@ TYPED_TEST(AverageStress, RotatedChainGivesRotatedTensor) {
   const auto sigma = average_stress(w, volume);
   const auto want = (force * (4.0 * r - 2.0 * d) / volume * n * n.transpose()).eval();
   EXPECT_LT((sigma - want).norm(), 1e-10 * want.norm());
+}
+
+// The same two grains as one clump (overlapping members, so that the branch vectors differ
+// from a chain's): the Love-Weber sum over bodies takes the clump's centre, and its two wall
+// contacts (at the middle of each overlap) give sigma_yy V = F (distance between the contact
+// points) = F (d + 2 r - dw). Without the clump correction the sum would miss F d.
+TYPED_TEST(AverageStress, ClumpPressedBetweenWalls) {
+  constexpr int D = TypeParam::value;
+  const double kn = 2e5, r = 0.01, d = 1.5 * r, force = 30.0, volume = 2.5e-4;
+  World<D> w;
+  const auto mat = add_material(w, linear_material(kn, 0.5 * kn, 0.5, 1.0));
+  const double dw = force / kn;
+  const double centre = r - dw + 0.5 * d, top = d + 2.0 * r - 2.0 * dw;
+  add_plane(w, vec<D>(0.0, 0.0), vec<D>(0.0, 1.0), mat, "floor");
+  add_plane(w, vec<D>(0.0, top), vec<D>(0.0, -1.0), mat, "ceiling");
+  w.resolve_pair_laws();
+  ClumpTemplate<D> t;
+  t.centre = {Vec<D>::Zero(), Vec<D>(d * axis<D>(1))};
+  t.radius = {r, r};
+  // 2D templates keep their frame; in 3D the body frame is the principal one, whose first
+  // axis (smallest moment) is the long axis: turn it onto y.
+  typename Dim<D>::Orient q;
+  if constexpr (D == 2)
+    q = 0.0;
+  else
+    q = Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * std::numbers::pi, Vec<3>(0, 0, 1)));
+  const auto c = resolve_clump(t);
+  add_clump(w, c, vec<D>(0.3, centre, -0.2), q, 1.0, 2600.0, mat);
+  ASSERT_NEAR(w.particles.pos[0][1] + w.particles.pos[1][1], 2.0 * centre, 1e-12);
+  ASSERT_NEAR(std::abs(w.particles.pos[0][1] - w.particles.pos[1][1]), d, 1e-12);
+  w.dt = 1e-9;
+  w.measure_this_step = true;
+  step(w);
+  EXPECT_EQ(w.stats.contacts, 0u);  // members of one clump are never paired
+  EXPECT_EQ(w.stats.wall_contacts, 2u);
+  EXPECT_LT(unbalanced_force_ratio(w), 1e-9);
+  const auto sigma = average_stress(w, volume);
+  const double want = force * (d + 2.0 * r - dw) / volume;
+  EXPECT_LT(rel_err(sigma(1, 1), want), 1e-9);
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < D; ++b)
+      if (a != 1 || b != 1) {
+        EXPECT_NEAR(sigma(a, b), 0.0, 1e-9 * want) << a << b;
+      }
 }
 
 template <typename T>
