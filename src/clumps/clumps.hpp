@@ -41,6 +41,8 @@ struct Clumps {
   std::vector<Rot> inertia;      // principal moments (2D: the polar moment)
   std::vector<Rot> inv_inertia;  // their inverses
   std::vector<double> volume;    // of the union of the members (overlaps once)
+  // Stable identifier (creation order): clumps are renumbered with their members.
+  std::vector<std::uint32_t> id;
 
   std::size_t size() const { return pos.size(); }
 
@@ -71,7 +73,7 @@ struct Clumps {
     };
     apply(pos), apply(vel), apply(angvel), apply(angmom), apply(orient), apply(rotation);
     apply(force), apply(torque), apply(inv_mass), apply(inertia), apply(inv_inertia);
-    apply(volume);
+    apply(volume), apply(id);
   }
 
   // Homothetic scaling by m about each centre of mass (radius-growth compaction);

@@ -78,10 +78,11 @@ void write_particles_vtu(const std::string& path, const World<D>& world) {
   data.add("id", "UInt32", 1, P.id.data(), n * sizeof(std::uint32_t));
   std::vector<std::uint8_t> mat(P.material.begin(), P.material.end());
   data.add("material", "UInt8", 1, mat.data(), n);
-  // Clump of each grain (-1: a free grain), so that members can be coloured by clump.
+  // Clump of each grain (its stable id; -1: a free grain), so that members can be coloured
+  // by clump.
   std::vector<std::int32_t> clump(n, -1);
   for (std::size_t i = 0; i < P.clump.size(); ++i)
-    if (P.clump[i] != kNoClump) clump[i] = static_cast<std::int32_t>(P.clump[i]);
+    if (P.clump[i] != kNoClump) clump[i] = static_cast<std::int32_t>(world.clumps.id[P.clump[i]]);
   data.add("clump", "Int32", 1, clump.data(), n * sizeof(std::int32_t));
   body << "<PointData Scalars=\"radius\" Vectors=\"velocity\">\n"
        << data.take_xml() << "</PointData>\n";
