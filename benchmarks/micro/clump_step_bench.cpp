@@ -9,6 +9,7 @@
 #include "broadphase/neighbour_search.hpp"
 #include "clumps/clump_dynamics.hpp"
 #include "core/step.hpp"
+#include "integrate/integrator.hpp"
 
 namespace {
 
@@ -62,8 +63,25 @@ void BM_StepClumpPairs(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
 }
 
+// The integration stage alone (clumps: members summed, rigid-body step, members placed).
+template <int D>
+void BM_IntegrateRound(benchmark::State& state) {
+  auto w = packing<D>(static_cast<std::size_t>(state.range(0)), false);
+  for (auto _ : state) geodem::integrate(w);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
+}
+
+template <int D>
+void BM_IntegrateClumpPairs(benchmark::State& state) {
+  auto w = packing<D>(static_cast<std::size_t>(state.range(0)), true);
+  for (auto _ : state) geodem::integrate(w);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
+}
+
 }  // namespace
 
+BENCHMARK(BM_IntegrateRound<3>)->Arg(20000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IntegrateClumpPairs<3>)->Arg(20000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StepRound<2>)->Arg(20000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StepClumpPairs<2>)->Arg(20000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StepRound<3>)->Arg(20000)->Unit(benchmark::kMillisecond);
