@@ -71,7 +71,8 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
     for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k)
       ++start[std::min(inv[i], inv[old.other[k]]) + 1];
   for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
-  const bool extras = !old.extra.empty();
+  const bool extras = world.contact_extras && old.extra.size() == old.other.size() &&
+                      old.wall_extra.size() == old.wall.size();
   scratch.other.resize(old.other.size());
   scratch.spring.resize(old.other.size());
   scratch.extra.resize(extras ? old.other.size() : 0);
@@ -84,7 +85,9 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
       scratch.spring[slot] = a < b ? old.spring[k] : Vec(-old.spring[k]);
       if (extras) {
         auto e = old.extra[k];
-        if (a > b) e.roll = -e.roll, e.twist = -e.twist;  // moments on the other body
+        // The moment on the new body 2 is the old one reversed, roll + twist n with the
+        // normal reversed too: the rolling part changes sign, the twist value does not.
+        if (a > b) e.roll = -e.roll;
         scratch.extra[slot] = e;
       }
     }

@@ -103,5 +103,9 @@ std::size_t add_clump(World<D>& world, const ResolvedClump<D>& t, const typename
 // Random orientation, uniform over rotations (2D: an angle in [0, 2 pi)).
 template <int D>
 typename Dim<D>::Orient random_orientation(double u1, double u2, double u3);
+template <>
+Dim<2>::Orient random_orientation<2>(double u1, double u2, double u3);
+template <>
+Dim<3>::Orient random_orientation<3>(double u1, double u2, double u3);
 
 }  // namespace geodem

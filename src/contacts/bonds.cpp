@@ -12,7 +12,8 @@ std::size_t create_bonds(World<D>& world, double gap_tolerance) {
   if (!world.contact_extras) return 0;
   auto& L = world.nlist;
   const auto& P = world.particles;
-  if (world.rebuild_needed || L.start.size() != P.size() + 1 || L.extra.size() != L.other.size())
+  if (world.rebuild_needed || L.start.size() != P.size() + 1 || L.extra.size() != L.other.size() ||
+      L.wall_extra.size() != L.wall.size())
     build_neighbour_list(world);
   std::size_t created = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {

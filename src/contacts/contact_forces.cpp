@@ -64,7 +64,10 @@ void grain_pairs(World<D>& world) {
       if (dist2 >= rs * rs && !bonded) {
         // Apart: the history ends (written only when there is one, to spare stores).
         if (spring[k].squaredNorm() != 0.0) spring[k] = Vec::Zero();
-        if constexpr (Extras) extra[k] = ContactExtra<D>{};
+        if constexpr (Extras) {
+          if (Dim<D>::rot_norm2(extra[k].roll) != 0.0 || extra[k].twist != 0.0)
+            extra[k] = ContactExtra<D>{};
+        }
         continue;
       }
       const double dist = std::sqrt(dist2);

@@ -120,12 +120,13 @@ inline typename Dim<D>::Vec bonded_contact_force(const PairLaw& p, double r1, do
   const double kn = p.linear_kn(r1, r2), kt = p.linear_kt(kn);
   const double cn =
       (p.beta > 0.0 && inv_msum > 0.0) ? 2.0 * p.beta * std::sqrt(kn / inv_msum) : 0.0;
-  const double fn = kn * delta - cn * vn;
+  const double fe = kn * delta;  // elastic part: what the bond's strengths are checked against
+  const double fn = fe - cn * vn;
   keep_in_tangent_plane(spring, n);
   spring -= (kt * dt) * (vrel - vn * n);
   const double scale = p.bond_scale(r1, r2);
-  const double shear_limit = p.bond_shear * scale + p.mu * std::max(fn, 0.0);
-  broken = fn < -p.bond_tension * scale || spring.squaredNorm() > shear_limit * shear_limit;
+  const double shear_limit = p.bond_shear * scale + p.mu * std::max(fe, 0.0);
+  broken = fe < -p.bond_tension * scale || spring.squaredNorm() > shear_limit * shear_limit;
   if (broken && delta <= 0.0) {
     spring = Vec::Zero();
     fn_out = 0.0;

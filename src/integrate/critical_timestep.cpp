@@ -27,15 +27,18 @@ struct DiagonalStiffness {
     trans.assign(n, Vec::Zero());
     rot.assign(n, Dim<D>::zero_rot());
   }
-  void add(std::size_t b, const Vec& n, double kn, double kt, const Vec& lever, double kr) {
+  // kr: rolling spring (about the tangent axes); ktw: twisting spring (about n, 3D).
+  void add(std::size_t b, const Vec& n, double kn, double kt, const Vec& lever, double kr,
+           double ktw) {
     const Vec n2 = n.cwiseProduct(n);
     trans[b] += Vec::Constant(kt) + (kn - kt) * n2;
     const auto ln = Dim<D>::cross(lever, n);
     if constexpr (D == 2) {
+      (void)ktw;
       rot[b] += kt * lever.squaredNorm() + (kn - kt) * ln * ln + kr;
     } else {
       rot[b] += kt * (Vec::Constant(lever.squaredNorm()) - lever.cwiseProduct(lever)) +
-                (kn - kt) * ln.cwiseProduct(ln) + kr * (Vec::Ones() - n2);
+                (kn - kt) * ln.cwiseProduct(ln) + kr * (Vec::Ones() - n2) + ktw * n2;
     }
   }
   double max_trans(std::size_t i) const { return trans[i].maxCoeff(); }
@@ -68,22 +71,26 @@ double critical_timestep(const World<D>& world) {
   };
 
   const bool have_list = L.start.size() == n + 1;
+  const bool extras = L.extra.size() == L.other.size() && !L.extra.empty();
   for (std::size_t i = 0; have_list && i < n; ++i) {
     for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
       const std::uint32_t j = L.other[k];
       const double rs = P.radius[i] + P.radius[j];
       const Vec d = P.pos[j] - P.pos[i];
       const double dist = d.norm();
-      if (dist >= rs || dist <= 0.0) continue;
+      // A bonded pair pulled apart still has its springs.
+      const bool bonded = extras && L.extra[k].bonded;
+      if ((dist >= rs && !bonded) || dist <= 0.0) continue;
       const PairLaw& law = world.pair_law(P.material[i], P.material[j]);
       const double delta = rs - dist;
       const NormalResult nr = normal_force(law, P.radius[i], P.radius[j], 0.0, delta, 0.0);
       const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[j])
                                                     : 1.5 * nr.fn / delta;  // dF/d(delta)
       const Vec nrm = d / dist;
-      const double kr = law.rolling_stiffness(nr.kt, P.radius[i], P.radius[j]);
-      K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr);
-      K.add(body(j), nrm, kn, nr.kt, lever(j, -nrm), kr);
+      const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], P.radius[j]);
+      const double kr = law.roll_mu > 0.0 ? k_roll : 0.0, ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
+      K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
+      K.add(body(j), nrm, kn, nr.kt, lever(j, -nrm), kr, ktw);
     }
     for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
       const auto& w = world.walls[L.wall[k]];
@@ -100,8 +107,9 @@ double critical_timestep(const World<D>& world) {
           normal_force(law, P.radius[i], wall_partner_radius(law, P.radius[i]), 0.0, delta, 0.0);
       const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i])
                                                     : 1.5 * nr.fn / delta;
-      const double kr = law.rolling_stiffness(nr.kt, P.radius[i], kWallRadius);
-      K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr);
+      const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], kWallRadius);
+      const double kr = law.roll_mu > 0.0 ? k_roll : 0.0, ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
+      K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
     }
   }
 

@@ -78,8 +78,8 @@ struct PairLaw {
   static double rolling_radius(double r1, double r2) {
     return std::isinf(r2) ? r1 : r1 * r2 / (r1 + r2);
   }
+  // Stiffness of the rolling (and twisting) moment springs, roll_kr kt R^2.
   double rolling_stiffness(double kt_value, double r1, double r2) const {
-    if (!rolling()) return 0.0;
     const double r = rolling_radius(r1, r2);
     return roll_kr * kt_value * r * r;
   }

@@ -201,6 +201,8 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     c.scale = t.positive("scale", 1.0);
     c.angle_deg = t.number("angle_deg", 0.0);
     c.axis = D == 3 ? vec(t, "axis", List{0.0, 0.0, 1.0}) : List{};
+    if (D == 3 && c.axis[0] == 0.0 && c.axis[1] == 0.0 && c.axis[2] == 0.0)
+      t.fail("axis", "expected a non-zero rotation axis");
     c.material = material_name(t, "material");
     s.clumps.push_back(c);
     t.finish();
