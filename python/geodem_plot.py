@@ -14,6 +14,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.collections import EllipseCollection  # noqa: E402
 
 
 def read_history(path):
@@ -139,7 +140,150 @@ def plot_triaxial(out, summary, h):
     return made
 
 
-PLOTTERS = {"scene": plot_scene, "triaxial": plot_triaxial}
+# Two contrasting colours for the alternating vertical bands of soil (the
+# deformed stripes show where the soil moved), grey for grains left out.
+BAND_COLOURS = ("#3b6ea5", "#e3c16f")
+UNBANDED_COLOUR = "#b5b5b5"
+SHEET_COLOUR = "#c0392b"
+
+
+def read_state(path):
+    """Columns of a CSV file as float lists, or None when the file is absent."""
+    if not path.is_file():
+        return None
+    table = read_history(path)
+    return table if table and all(table.values()) else None  # header only: nothing to draw
+
+
+def plot_pullout(out, summary, h):
+    """Pull-out curve, tension along the sheet and the soil around the sheet
+    before and after pulling. Optional files that are missing are skipped."""
+    results = summary.get("results", {})
+    made = []
+    u = [1e3 * v for v in h.get("displacement", [])]
+    tension = [v / 1e3 for v in h.get("tension", [])]
+    if u and len(tension) == len(u):
+        fig, ax = plt.subplots(figsize=(6.4, 4.2))
+        ax.plot(u, tension, color="tab:blue", label="tension at the pulled end")
+        t_slip = results.get("T_analytic_slip")
+        if t_slip is not None and math.isfinite(t_slip):
+            ax.axhline(t_slip / 1e3, color="k", ls="--", lw=0.8, label="analytic slippage estimate")
+        t_max, u_max = results.get("T_max"), results.get("displacement_at_T_max")
+        if t_max is None or u_max is None:
+            i = max(range(len(tension)), key=lambda k: tension[k])  # fall back on the history
+            t_max, u_max = 1e3 * tension[i], u[i] / 1e3
+        ax.plot(1e3 * u_max, t_max / 1e3, "k.", ms=9)
+        ax.annotate(f"T_max = {t_max / 1e3:.3g} kN/m\nat u = {1e3 * u_max:.3g} mm",
+                    xy=(1e3 * u_max, t_max / 1e3), xytext=(8, 6), textcoords="offset points",
+                    fontsize=8, va="bottom", bbox={"fc": "white", "ec": "none", "alpha": 0.8})
+        ax.set_xlabel("pulled-end displacement (mm)")
+        ax.set_ylabel("tension at the pulled end (kN/m)", color="tab:blue")
+        # Headroom for the T_max label above the curve.
+        ax.set_ylim(min(0.0, min(tension)), 1.2 * max(max(tension), t_max / 1e3, 1e-9))
+        ax.grid(alpha=0.3)
+        handles, labels = ax.get_legend_handles_labels()
+        soil = h.get("soil_displacement")
+        if soil and len(soil) == len(u):
+            ax2 = ax.twinx()
+            ax2.plot(u, [1e3 * v for v in soil], color="tab:green", lw=1.0,
+                     label="mean soil displacement (anchoring zone)")
+            ax2.set_ylabel("mean soil displacement (mm)", color="tab:green")
+            ax2.set_ylim(bottom=min(0.0, 1e3 * min(soil)))  # zero level with the tension axis
+            h2, l2 = ax2.get_legend_handles_labels()
+            handles, labels = handles + h2, labels + l2
+        ax.legend(handles, labels, fontsize=8, loc="lower right")
+        ax.set_title("Pull-out test")
+        fig.tight_layout()
+        fig.savefig(out / "pullout.png", dpi=120)
+        plt.close(fig)
+        made.append("pullout.png")
+
+    profiles = read_state(out / "tension_profiles.csv")
+    if profiles and profiles.get("s"):
+        # Rows are grouped by pulled-end displacement; keep the order of the file.
+        groups = {}
+        for d, s, t in zip(profiles["displacement"], profiles["s"], profiles["tension"]):
+            groups.setdefault(d, ([], []))
+            groups[d][0].append(s)
+            groups[d][1].append(t / 1e3)
+        cmap = plt.get_cmap("viridis")
+        fig, ax = plt.subplots(figsize=(6.4, 4.2))
+        for k, (d, (s, t)) in enumerate(groups.items()):
+            colour = cmap(k / max(1, len(groups) - 1) * 0.9)
+            ax.plot(s, t, color=colour, marker=".", ms=3, label=f"u = {round(1e3 * d, 2):g} mm")
+        ax.set_xlabel("distance along the sheet from the pulled end, s (m)")
+        ax.set_ylabel("tension (kN/m)")
+        ax.set_xlim(left=0)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        ax.set_title("Tension along the sheet")
+        fig.tight_layout()
+        fig.savefig(out / "tension_profiles.png", dpi=120)
+        plt.close(fig)
+        made.append("tension_profiles.png")
+
+    states = {}
+    for name in ("initial", "final"):
+        grains = read_state(out / "states" / f"grains_{name}.csv")
+        sheet = read_state(out / "states" / f"sheet_{name}.csv")
+        if grains or sheet:
+            states[name] = (grains, sheet)
+    if states:
+        # One set of limits for both pictures, so that they compare.
+        xs, ys = [], []
+        for grains, sheet in states.values():
+            if grains:
+                for x, y, r in zip(grains["x"], grains["y"], grains["radius"]):
+                    xs += [x - r, x + r]
+                    ys += [y - r, y + r]
+            if sheet:
+                xs += sheet["x"]
+                ys += sheet["y"]
+        pad = 0.02 * max(max(xs) - min(xs), max(ys) - min(ys), 1e-9)
+        xlim = (min(xs) - pad, max(xs) + pad)
+        ylim = (min(ys) - pad, max(ys) + pad)
+        aspect = (ylim[1] - ylim[0]) / (xlim[1] - xlim[0])
+        size = (6.4, min(9.0, max(3.0, 5.6 * aspect + 1.0)))
+        u_final = u[-1] if u else None
+        for name, (grains, sheet) in states.items():
+            fig, ax = plt.subplots(figsize=size)
+            if grains:
+                n = len(grains["x"])
+                columns = grains.get("column", [-1.0] * n)
+                colours = [UNBANDED_COLOUR if c < 0 else BAND_COLOURS[int(c) % len(BAND_COLOURS)]
+                           for c in columns]
+                d = [2 * r for r in grains["radius"]]
+                # Edges only while the grains are big enough on the picture to show them.
+                edge = 0.2 if n <= 3000 else 0.0
+                ax.add_collection(EllipseCollection(
+                    d, d, [0.0] * n, units="xy", offsets=list(zip(grains["x"], grains["y"])),
+                    offset_transform=ax.transData, facecolors=colours, edgecolors="0.25",
+                    linewidths=edge))
+            if sheet:
+                order = sorted(range(len(sheet["x"])), key=lambda k: sheet["node"][k]) \
+                    if "node" in sheet else range(len(sheet["x"]))
+                ax.plot([sheet["x"][k] for k in order], [sheet["y"][k] for k in order],
+                        color=SHEET_COLOUR, lw=2.5, solid_capstyle="round", zorder=3)
+            ax.set_xlim(*xlim)
+            ax.set_ylim(*ylim)
+            ax.set_aspect("equal")
+            ax.set_xlabel("x (m)")
+            ax.set_ylabel("y (m)")
+            if name == "initial":
+                title = "Pull-out: initial state (u = 0 mm)"
+            elif u_final is not None:
+                title = f"Pull-out: final state (u = {u_final:.3g} mm)"
+            else:
+                title = "Pull-out: final state"
+            ax.set_title(title)
+            fig.tight_layout()
+            fig.savefig(out / f"pullout_{name}.png", dpi=120)
+            plt.close(fig)
+            made.append(f"pullout_{name}.png")
+    return made
+
+
+PLOTTERS = {"scene": plot_scene, "triaxial": plot_triaxial, "pullout": plot_pullout}
 
 
 def main(argv):

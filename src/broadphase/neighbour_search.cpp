@@ -1,6 +1,7 @@
 #include "broadphase/neighbour_search.hpp"
 
 #include "clumps/clump_dynamics.hpp"
+#include "structures/spar_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -99,24 +100,84 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
         std::swap(scratch.spring[y - 1], scratch.spring[y]);
         if (extras) std::swap(scratch.extra[y - 1], scratch.extra[y]);
       }
-  // Grain-wall rows keep their entries; only the rows move.
-  scratch.wall_start.assign(n + 1, 0);
-  scratch.wall.resize(old.wall.size());
-  scratch.wall_spring.resize(old.wall.size());
-  scratch.wall_extra.resize(extras ? old.wall.size() : 0);
-  for (std::size_t k = 0; k < n; ++k)
-    scratch.wall_start[k + 1] =
-        scratch.wall_start[k] + (old.wall_start[order[k] + 1] - old.wall_start[order[k]]);
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t src = old.wall_start[order[k]];
-    const std::uint32_t len = scratch.wall_start[k + 1] - scratch.wall_start[k];
-    for (std::uint32_t m = 0; m < len; ++m) {
-      scratch.wall[scratch.wall_start[k] + m] = old.wall[src + m];
-      scratch.wall_spring[scratch.wall_start[k] + m] = old.wall_spring[src + m];
-      if (extras) scratch.wall_extra[scratch.wall_start[k] + m] = old.wall_extra[src + m];
+  // Grain-wall and grain-spar rows keep their entries; only the rows move.
+  auto move_rows = [&](const std::vector<std::uint32_t>& o_start,
+                       const std::vector<std::uint32_t>& o_idx, const std::vector<Vec>& o_spring,
+                       std::vector<std::uint32_t>& s_start, std::vector<std::uint32_t>& s_idx,
+                       std::vector<Vec>& s_spring, const std::vector<ContactExtra<D>>* o_extra,
+                       std::vector<ContactExtra<D>>* s_extra) {
+    if (o_start.size() != n + 1) return;
+    s_start.assign(n + 1, 0);
+    s_idx.resize(o_idx.size());
+    s_spring.resize(o_idx.size());
+    if (s_extra) s_extra->resize(o_idx.size());
+    for (std::size_t k = 0; k < n; ++k)
+      s_start[k + 1] = s_start[k] + (o_start[order[k] + 1] - o_start[order[k]]);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t src = o_start[order[k]];
+      const std::uint32_t len = s_start[k + 1] - s_start[k];
+      for (std::uint32_t m = 0; m < len; ++m) {
+        s_idx[s_start[k] + m] = o_idx[src + m];
+        s_spring[s_start[k] + m] = o_spring[src + m];
+        if (s_extra) (*s_extra)[s_start[k] + m] = (*o_extra)[src + m];
+      }
     }
-  }
+  };
+  scratch.wall_extra.resize(0);
+  move_rows(old.wall_start, old.wall, old.wall_spring, scratch.wall_start, scratch.wall,
+            scratch.wall_spring, extras ? &old.wall_extra : nullptr,
+            extras ? &scratch.wall_extra : nullptr);
+  scratch.spar_start.clear();
+  move_rows(old.spar_start, old.spar, old.spar_spring, scratch.spar_start, scratch.spar,
+            scratch.spar_spring, nullptr, nullptr);
   old.swap_rows(scratch);
+}
+
+// Grain-spar element pairs: each element visits the grid cells its reach covers (its
+// bounding box grown by the largest grain radius, its half thickness and the skin), so
+// the search stays O(N) however long the chain. Pairs are bucketed by grain (a
+// counting sort); elements are visited in order, so each row is sorted by element.
+template <int D>
+void list_spar_pairs(World<D>& world, const Grid<D>& g, double rmax) {
+  using Vec = typename Dim<D>::Vec;
+  const auto& P = world.particles;
+  const auto& S = world.spars;
+  auto& L = world.nlist;
+  const std::size_t n = P.size();
+  static thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  pairs.clear();
+  for (std::size_t e = 0; e < S.elements(); ++e) {
+    const Vec a = S.pos[S.node_a[e]], b = S.pos[S.node_b[e]];
+    const double reach = rmax + S.half_thickness[e] + L.skin;
+    std::array<int, 3> c0{0, 0, 0}, c1{0, 0, 0};
+    for (int k = 0; k < D; ++k) {
+      Vec lo = a.cwiseMin(b), hi = a.cwiseMax(b);
+      lo[k] -= reach;
+      hi[k] += reach;
+      c0[k] = g.coord(lo, k);
+      c1[k] = g.coord(hi, k);
+    }
+    for (int cz = c0[2]; cz <= c1[2]; ++cz)
+      for (int cy = c0[1]; cy <= c1[1]; ++cy)
+        for (int cx = c0[0]; cx <= c1[0]; ++cx) {
+          const std::uint32_t cell = g.cell_index({cx, cy, cz});
+          for (std::uint32_t s = g.cell_start[cell]; s < g.cell_start[cell + 1]; ++s) {
+            const std::uint32_t j = g.sorted[s];
+            const double t = std::clamp(spar_parameter(S, e, P.pos[j]), 0.0, 1.0);
+            const Vec q = (1.0 - t) * a + t * b;
+            const double r = P.radius[j] + S.half_thickness[e] + L.skin;
+            if ((q - P.pos[j]).squaredNorm() < r * r)
+              pairs.emplace_back(j, static_cast<std::uint32_t>(e));
+          }
+        }
+  }
+  L.spar_start.assign(n + 1, 0);
+  for (const auto& p : pairs) ++L.spar_start[p.first + 1];
+  for (std::size_t i = 0; i < n; ++i) L.spar_start[i + 1] += L.spar_start[i];
+  L.spar.resize(pairs.size());
+  static thread_local std::vector<std::uint32_t> fill;
+  fill.assign(L.spar_start.begin(), L.spar_start.end() - 1);
+  for (const auto& p : pairs) L.spar[fill[p.first]++] = p.second;
 }
 
 }  // namespace
@@ -152,6 +213,9 @@ void build_neighbour_list(World<D>& world) {
     L.wall_spring.clear();
     L.extra.clear();
     L.wall_extra.clear();
+    L.spar_start.assign(world.spars.empty() ? 0 : n + 1, 0);
+    L.spar.clear();
+    L.spar_spring.clear();
   };
   reset_rows();
 
@@ -252,6 +316,7 @@ void build_neighbour_list(World<D>& world) {
       }
       L.wall_start[i + 1] = static_cast<std::uint32_t>(L.wall.size());
     }
+    if (!world.spars.empty()) list_spar_pairs(world, g, rmax);
   }
 
   L.spring.resize(L.other.size());
@@ -287,9 +352,21 @@ void build_neighbour_list(World<D>& world) {
       for (std::size_t k = 0; k < wn; ++k) L.wall_spring[wb + k] = Vec::Zero();
     }
   }
+  if (!L.spar_start.empty()) {
+    L.spar_spring.assign(L.spar.size(), Vec::Zero());
+    if (have_old && old.spar_start.size() == n + 1) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t sb = L.spar_start[i], sn = L.spar_start[i + 1] - sb;
+        const std::size_t ob = old.spar_start[i], on = old.spar_start[i + 1] - ob;
+        merge_history(old.spar.data() + ob, old.spar_spring.data() + ob, on, L.spar.data() + sb,
+                      L.spar_spring.data() + sb, sn, Vec::Zero().eval(), drop_nothing);
+      }
+    }
+  }
 
   for (std::size_t i = 0; i < n; ++i) P.pos_at_build[i] = P.pos[i];
   for (auto& w : world.walls) w.displacement = Vec::Zero();
+  world.spars.pos_at_build = world.spars.pos;
   world.disp_bound = 0.0;
   world.radius_growth = 0.0;
   world.rebuild_needed = false;

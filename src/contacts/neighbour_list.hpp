@@ -35,6 +35,10 @@ struct NeighbourList {
   // Parallel to `spring` / `wall_spring` when the world has contact extras, else empty.
   std::vector<ContactExtra<D>> extra;
   std::vector<ContactExtra<D>> wall_extra;
+  // Grain-spar element pairs (structures/), same layout; rows sorted by element.
+  std::vector<std::uint32_t> spar_start;
+  std::vector<std::uint32_t> spar;
+  std::vector<Vec> spar_spring;
 
   double skin = 0.0;  // extra distance listed beyond touching (m)
   std::uint64_t builds = 0;
@@ -45,11 +49,13 @@ struct NeighbourList {
     start.swap(o.start), other.swap(o.other), spring.swap(o.spring);
     wall_start.swap(o.wall_start), wall.swap(o.wall), wall_spring.swap(o.wall_spring);
     extra.swap(o.extra), wall_extra.swap(o.wall_extra);
+    spar_start.swap(o.spar_start), spar.swap(o.spar), spar_spring.swap(o.spar_spring);
   }
   std::size_t bytes() const {
     return start.capacity() * 4 + other.capacity() * 4 + spring.capacity() * sizeof(Vec) +
            wall_start.capacity() * 4 + wall.capacity() * 4 + wall_spring.capacity() * sizeof(Vec) +
-           (extra.capacity() + wall_extra.capacity()) * sizeof(ContactExtra<D>);
+           (extra.capacity() + wall_extra.capacity()) * sizeof(ContactExtra<D>) +
+           spar_start.capacity() * 4 + spar.capacity() * 4 + spar_spring.capacity() * sizeof(Vec);
   }
 };
 

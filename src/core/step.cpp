@@ -2,10 +2,13 @@
 //
 //   1. neighbour search   rebuild the Verlet list when a grain or wall moved half the skin;
 //                         then, every update_interval steps, the automatic time step
-//   2. contact forces     grain-grain and grain-wall laws; wall reactions; measurements
-//   3. controllers        servo walls, radius growth, ... (once each)
-//   4. integration        leapfrog with local damping; walls move; time advances
-//   5. recorders          history rows, snapshots (outside the engine, by callback)
+//   2. contact forces     grain-grain, grain-wall and grain-spar laws; wall reactions;
+//                         measurements
+//   3. structures         spar chains: element tensions, bending at nodes
+//   4. controllers        servo walls, radius growth, ... (once each)
+//   5. integration        leapfrog with local damping (grains, clumps, spar nodes);
+//                         walls move; time advances
+//   6. recorders          history rows, snapshots (outside the engine, by callback)
 //
 // Each stage lives in its concept's folder; this file only orders and times them.
 #include "core/step.hpp"
@@ -19,6 +22,8 @@
 #include "core/error.hpp"
 #include "integrate/critical_timestep.hpp"
 #include "integrate/integrator.hpp"
+#include "structures/spar_contacts.hpp"
+#include "structures/spar_dynamics.hpp"
 
 namespace geodem {
 
@@ -43,12 +48,13 @@ class ScopedStage {
   Clock::time_point t0_ = Clock::now();
 };
 
-// True when a grain or wall may have moved far enough that a pair not listed
-// could now touch: 2 x (largest grain displacement) or grain + wall displacement
-// beyond the skin. The cheap velocity bound is refined by an exact pass first.
+// True when a grain, wall or spar node may have moved far enough that a pair not
+// listed could now touch: 2 x (largest grain displacement) or grain + wall (or node)
+// displacement beyond the skin. A point of an element moves at most as far as its
+// farther node. The cheap velocity bound is refined by an exact pass first.
 template <int D>
 bool list_expired(World<D>& world) {
-  double wall_disp = 0.0;
+  double wall_disp = spar_max_displacement(world);
   for (const auto& w : world.walls) wall_disp = std::max(wall_disp, w.displacement.norm());
   auto expired = [&](double d) {
     return 2.0 * d > world.nlist.skin || d + wall_disp > world.nlist.skin;
@@ -91,9 +97,14 @@ template <int D>
 [[noreturn]] void throw_overlap(const World<D>& world) {
   const auto& P = world.particles;
   const std::int64_t j = world.overlap_partner;
+  // Partners: a grain (j >= 0), a wall (-1 - index), a spar element (-1 - walls - index).
+  const std::size_t other = static_cast<std::size_t>(-1 - j);
   const std::string partner =
       j >= 0 ? "grain " + std::to_string(P.id[static_cast<std::size_t>(j)])
-             : "wall '" + world.walls[static_cast<std::size_t>(-1 - j)].name + "'";
+      : other < world.walls.size()
+          ? "wall '" + world.walls[other].name + "'"
+          : "spar element " + std::to_string(other - world.walls.size()) + " of chain '" +
+                world.spars.chains[world.spars.chain_of[other - world.walls.size()]].name + "'";
   throw InstabilityError(
       "overlap of " + std::to_string(static_cast<int>(100.0 * world.overlap_ratio)) +
       " % of the radius between grain " +
@@ -121,7 +132,12 @@ void step(World<D>& world) {
       P.torque[i] = Dim<D>::zero_rot();
     }
     compute_contact_forces(world);
+    compute_spar_contacts(world);
     if (world.overlap_offender >= 0) throw_overlap(world);
+  }
+  if (!world.spars.empty()) {
+    ScopedStage<D> t(world, Stage::kStructures);
+    spar_element_forces(world);
   }
   {
     ScopedStage<D> t(world, Stage::kControllers);

@@ -14,6 +14,7 @@
 #include "core/dim.hpp"
 #include "materials/material.hpp"
 #include "particles/particles.hpp"
+#include "structures/spar_chains.hpp"
 #include "walls/walls.hpp"
 
 namespace geodem {
@@ -32,14 +33,15 @@ class Controller {
 enum class Stage : int {
   kNeighbours,
   kContactForces,
+  kStructures,
   kControllers,
   kIntegration,
   kRecorders,
   kCount
 };
 inline const char* stage_name(Stage s) {
-  static const char* names[] = {"neighbour search", "contact forces", "controllers", "integration",
-                                "recorders"};
+  static const char* names[] = {"neighbour search", "contact forces", "structures",
+                                "controllers",      "integration",    "recorders"};
   return names[static_cast<int>(s)];
 }
 
@@ -50,7 +52,8 @@ struct ContactStats {
   double sum_force = 0.0;    // sum of |f| over grain-grain and grain-wall contacts
   std::size_t contacts = 0;  // grain-grain contacts
   std::size_t wall_contacts = 0;
-  double elastic_energy = 0.0;  // normal springs only (exact for frictionless linear law)
+  std::size_t spar_contacts = 0;  // grain-spar element contacts
+  double elastic_energy = 0.0;    // normal springs only (exact for frictionless linear law)
 };
 
 template <int D>
@@ -60,6 +63,7 @@ struct World {
   Particles<D> particles;
   Clumps<D> clumps;  // rigid bodies made of grains of `particles`
   std::vector<Wall<D>> walls;
+  SparChains<D> spars;  // geosynthetic sheets / cables; their materials are in `materials`
   std::vector<Material> materials;
   std::vector<PairLaw> pair_laws;  // materials x materials
   std::vector<PairLaw> wall_laws;  // materials x walls

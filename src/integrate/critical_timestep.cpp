@@ -6,6 +6,8 @@
 #include <numbers>
 
 #include "contacts/contact_law.hpp"
+#include "structures/spar_dynamics.hpp"
+#include "structures/spar_geometry.hpp"
 
 namespace geodem {
 
@@ -111,6 +113,25 @@ double critical_timestep(const World<D>& world) {
       const double kr = law.roll_mu > 0.0 ? k_roll : 0.0, ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
       K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
     }
+    if (L.spar_start.size() != n + 1) continue;
+    const auto& S = world.spars;
+    for (std::uint32_t k = L.spar_start[i]; k < L.spar_start[i + 1]; ++k) {
+      const std::size_t e = L.spar[k];
+      const SparPoint<D> p = spar_point(S, e, P.pos[i]);
+      const Vec d = p.closest - P.pos[i];
+      const double dist = d.norm();
+      if (p.region != SparRegion::kOwned || dist <= 0.0 ||
+          dist >= P.radius[i] + S.half_thickness[e])
+        continue;
+      const PairLaw& law = world.pair_law(P.material[i], S.material[e]);
+      const double delta = P.radius[i] + S.half_thickness[e] - dist;
+      const NormalResult nr =
+          normal_force(law, P.radius[i], wall_partner_radius(law, P.radius[i]), 0.0, delta, 0.0);
+      const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i])
+                                                    : 1.5 * nr.fn / delta;
+      const Vec nrm = d / dist;
+      K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), 0.0, 0.0);
+    }
   }
 
   // dt^2 = 2 x the smallest of m/K_t and I/K_r (the sqrt(2) of yade: the critical
@@ -142,6 +163,7 @@ double critical_timestep(const World<D>& world) {
     if (kt > 0.0) dt2 = std::min(dt2, 1.0 / (C.inv_mass[c] * kt));
     if (kr > 0.0) dt2 = std::min(dt2, Clumps<D>::min_moment(C.inertia[c]) / kr);
   }
+  dt2 = std::min(dt2, spar_min_mass_over_stiffness(world));
   return world.dt_safety * std::sqrt(2.0 * dt2);
 }
 

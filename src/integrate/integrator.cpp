@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "clumps/clump_dynamics.hpp"
+#include "structures/spar_dynamics.hpp"
 
 namespace geodem {
 
@@ -60,8 +61,10 @@ void integrate(World<D>& world) {
     vmax2 = std::max(vmax2, vel[i].squaredNorm());
   }
   vmax2 = std::max(vmax2, integrate_clumps(world));
-  // Bound on how far any grain moved since the neighbour list was checked.
+  // Bound on how far any grain moved since the neighbour list was checked (spar nodes
+  // are checked exactly, like walls: they are few).
   world.disp_bound += std::sqrt(vmax2) * dt;
+  if (!world.spars.empty()) integrate_spar_nodes(world);
 }
 
 template <int D>
