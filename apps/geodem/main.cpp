@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "io/run_output.hpp"
 #include "io/toml_reader.hpp"
+#include "lab/run_pullout.hpp"
 #include "lab/run_triaxial.hpp"
 #include "scene/build_scene.hpp"
 #include "scene/run_scene.hpp"
@@ -34,10 +35,10 @@ Loaded load(const std::string& file, const std::vector<std::string>& overrides) 
     throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
                              "expected a string");
   l.kind = *kind->value<std::string>();
-  if (l.kind != "scene" && l.kind != "triaxial")
+  if (l.kind != "scene" && l.kind != "triaxial" && l.kind != "pullout")
     throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
                              "unknown or unavailable kind \"" + l.kind +
-                                 "\"; this version runs: \"scene\", \"triaxial\"");
+                                 "\"; this version runs: \"scene\", \"triaxial\", \"pullout\"");
   return l;
 }
 
@@ -103,6 +104,21 @@ int main(int argc, char** argv) {
       geodem::run_triaxial(t, opt);
       if (t.plots) geodem::make_plots(out_dir, quiet);
       if (!quiet) std::fprintf(stderr, "done: outputs in %s\n", out_dir.c_str());
+      return kOk;
+    }
+    if (l.kind == "pullout") {
+      const geodem::PulloutSettings p = geodem::read_pullout(l.root, scenario);
+      if (*check) {
+        std::printf("%s: ok (kind = \"pullout\", shape %s)\n", scenario.c_str(),
+                    p.anchor.shape.c_str());
+        return kOk;
+      }
+      const auto summary = geodem::run_pullout(p, opt);
+      if (p.plots) geodem::make_plots(out_dir, quiet);
+      if (!quiet)
+        std::fprintf(stderr, "done: T_max %.4g N/m (analytic slippage %.4g N/m); outputs in %s\n",
+                     summary["results"]["T_max"].get<double>(),
+                     summary["results"]["T_analytic_slip"].get<double>(), out_dir.c_str());
       return kOk;
     }
     const geodem::SceneSettings s = geodem::read_scene(l.root, scenario);

@@ -157,7 +157,17 @@ double integrate_clumps(World<D>& world) {
   const Vec g = world.gravity;
   static thread_local std::vector<Vec> body_momentum;  // 3D: angular momentum, body frame
   if constexpr (D == 3) body_momentum.resize(nc);
+  const bool any_held = !C.held.empty();
   for (std::size_t c = 0; c < nc; ++c) {
+    if (any_held && C.held[c]) {  // kept still: no kick, no drift, no turn
+      C.vel[c].setZero();
+      C.angvel[c] = Dim<D>::zero_rot();
+      if constexpr (D == 3) {
+        C.angmom[c].setZero();
+        body_momentum[c].setZero();
+      }
+      continue;
+    }
     Vec a = C.force[c] * C.inv_mass[c] + g;
     if (alpha > 0.0)
       for (int k = 0; k < D; ++k) a[k] = damped(a[k], C.vel[c][k] + 0.5 * dt * a[k], alpha);
@@ -236,6 +246,7 @@ std::size_t add_clump(World<D>& world, const ResolvedClump<D>& t, const typename
     C.inv_inertia.push_back(inertia.cwiseInverse());
   C.volume.push_back(t.volume * std::pow(scale, D));
   C.id.push_back(static_cast<std::uint32_t>(c));
+  if (!C.held.empty()) C.held.push_back(0);
   for (std::size_t m = 0; m < t.offset.size(); ++m) {
     const Vec off = scale * t.offset[m];
     const std::size_t i =

@@ -43,6 +43,8 @@ struct Clumps {
   std::vector<double> volume;    // of the union of the members (overlaps once)
   // Stable identifier (creation order): clumps are renumbered with their members.
   std::vector<std::uint32_t> id;
+  // Held in place (not integrated) while non-zero; empty when no clump is held.
+  std::vector<std::uint8_t> held;
 
   std::size_t size() const { return pos.size(); }
 
@@ -63,17 +65,18 @@ struct Clumps {
     }
   }
 
-  // Reorders every array: new index k holds the clump that had index order[k].
+  // Reorders every array: new index k holds the clump that had index order[k] (a
+  // shorter order keeps only those it lists).
   void permute(const std::vector<std::uint32_t>& order) {
     auto apply = [&](auto& v) {
       if (v.empty()) return;
-      std::remove_reference_t<decltype(v)> out(v.size());
+      std::remove_reference_t<decltype(v)> out(order.size());
       for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
       v.swap(out);
     };
     apply(pos), apply(vel), apply(angvel), apply(angmom), apply(orient), apply(rotation);
     apply(force), apply(torque), apply(inv_mass), apply(inertia), apply(inv_inertia);
-    apply(volume), apply(id);
+    apply(volume), apply(id), apply(held);
   }
 
   // Homothetic scaling by m about each centre of mass (radius-growth compaction);

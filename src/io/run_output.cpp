@@ -68,6 +68,11 @@ void VtkSeries<D>::write(const World<D>& world) {
     write_walls_vtp(dir_ + "/vtk/" + name, world, half);
     pvd_.add(world.time, name, 1);
   }
+  if (!world.spars.empty()) {
+    std::snprintf(name, sizeof name, "spars_%06d.vtp", count_);
+    write_spars_vtp(dir_ + "/vtk/" + name, world);
+    pvd_.add(world.time, name, 2);
+  }
   pvd_.write();
   ++count_;
 }

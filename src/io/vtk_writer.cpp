@@ -157,6 +157,42 @@ void write_walls_vtp(const std::string& path, const World<D>& world, double half
   write_file_atomic(path, finish("PolyData", body.str(), data));
 }
 
+template <int D>
+void write_spars_vtp(const std::string& path, const World<D>& world) {
+  const auto& S = world.spars;
+  std::vector<double> pts, vel, tension, stiffness;
+  std::vector<std::int64_t> conn, offs, chain;
+  for (std::size_t i = 0; i < S.nodes(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      pts.push_back(k < D ? S.pos[i][k] : 0.0);
+      vel.push_back(k < D ? S.vel[i][k] : 0.0);
+    }
+  for (std::size_t e = 0; e < S.elements(); ++e) {
+    conn.push_back(S.node_a[e]);
+    conn.push_back(S.node_b[e]);
+    offs.push_back(static_cast<std::int64_t>(conn.size()));
+    tension.push_back(S.tension[e]);
+    stiffness.push_back(S.stiffness[e]);
+    chain.push_back(S.chain_of[e]);
+  }
+  AppendedData data;
+  std::ostringstream body;
+  body << "<PolyData>\n<Piece NumberOfPoints=\"" << S.nodes() << "\" NumberOfVerts=\"0\" "
+       << "NumberOfLines=\"" << S.elements() << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
+  data.add("velocity", "Float64", 3, vel.data(), vel.size() * sizeof(double));
+  body << "<PointData Vectors=\"velocity\">\n" << data.take_xml() << "</PointData>\n";
+  data.add("tension", "Float64", 1, tension.data(), tension.size() * sizeof(double));
+  data.add("stiffness_J", "Float64", 1, stiffness.data(), stiffness.size() * sizeof(double));
+  data.add("chain", "Int64", 1, chain.data(), chain.size() * 8);
+  body << "<CellData Scalars=\"tension\">\n" << data.take_xml() << "</CellData>\n";
+  data.add("Points", "Float64", 3, pts.data(), pts.size() * sizeof(double));
+  body << "<Points>\n" << data.take_xml() << "</Points>\n";
+  data.add("connectivity", "Int64", 1, conn.data(), conn.size() * 8);
+  data.add("offsets", "Int64", 1, offs.data(), offs.size() * 8);
+  body << "<Lines>\n" << data.take_xml() << "</Lines>\n</Piece>\n</PolyData>\n";
+  write_file_atomic(path, finish("PolyData", body.str(), data));
+}
+
 void PvdIndex::add(double time, const std::string& file, int part) {
   entries_.push_back({time, file, part});
 }
@@ -175,5 +211,7 @@ template void write_particles_vtu<2>(const std::string&, const World<2>&);
 template void write_particles_vtu<3>(const std::string&, const World<3>&);
 template void write_walls_vtp<2>(const std::string&, const World<2>&, double);
 template void write_walls_vtp<3>(const std::string&, const World<3>&, double);
+template void write_spars_vtp<2>(const std::string&, const World<2>&);
+template void write_spars_vtp<3>(const std::string&, const World<3>&);
 
 }  // namespace geodem

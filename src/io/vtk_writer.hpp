@@ -18,7 +18,11 @@ void write_particles_vtu(const std::string& path, const World<D>& world);
 template <int D>
 void write_walls_vtp(const std::string& path, const World<D>& world, double half_size);
 
-// The .pvd index: part 0 grains, part 1 walls.
+// Spar chains as polylines: node velocity, element tension, stiffness and chain index.
+template <int D>
+void write_spars_vtp(const std::string& path, const World<D>& world);
+
+// The .pvd index: part 0 grains, part 1 walls, part 2 spar chains.
 class PvdIndex {
  public:
   explicit PvdIndex(std::string path) : path_(std::move(path)) {}

@@ -70,17 +70,19 @@ std::size_t intact_bonds(const World<D>& world) {
 template <int D>
 double unbalanced_force_ratio(const World<D>& world) {
   const auto& P = world.particles;
-  const std::size_t nc = world.stats.contacts + world.stats.wall_contacts;
+  const std::size_t nc =
+      world.stats.contacts + world.stats.wall_contacts + world.stats.spar_contacts;
   if (nc == 0 || world.stats.sum_force <= 0.0) return std::numeric_limits<double>::quiet_NaN();
   double sum = 0.0;
   std::size_t nfree = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
-    if (P.inv_mass[i] == 0.0 || P.member(i)) continue;
+    if (P.inv_mass[i] == 0.0 || !P.free_body(i)) continue;  // fixed, held or clump member
     sum += (P.force[i] + world.gravity / P.inv_mass[i]).norm();
     ++nfree;
   }
   const auto& C = world.clumps;  // resultants summed at the last integration
   for (std::size_t c = 0; c < C.size(); ++c) {
+    if (!C.held.empty() && C.held[c]) continue;
     sum += (C.force[c] + world.gravity / C.inv_mass[c]).norm();
     ++nfree;
   }

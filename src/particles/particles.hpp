@@ -80,10 +80,11 @@ struct Particles {
   // A body integrated on its own: neither fixed nor a clump member.
   bool free_body(std::size_t i) const { return !(flags[i] & (kFixed | kClumpMember)); }
 
-  // Reorders every array: new index k holds the grain that had index order[k].
+  // Reorders every array: new index k holds the grain that had index order[k]. An
+  // order shorter than the grains keeps only those it lists (removal).
   void permute(const std::vector<std::uint32_t>& order) {
     auto apply = [&](auto& v) {
-      std::remove_reference_t<decltype(v)> out(v.size());
+      std::remove_reference_t<decltype(v)> out(order.size());
       for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
       v.swap(out);
     };

@@ -34,9 +34,11 @@ struct SparChains {
 
   // Nodes.
   std::vector<Vec> pos;
-  std::vector<Vec> vel;    // half step, like the grains
-  std::vector<Vec> force;  // contacts + elements this step (gravity added at integration)
-  std::vector<double> mass;
+  std::vector<Vec> vel;      // half step, like the grains
+  std::vector<Vec> force;    // contacts + elements this step (gravity added at integration)
+  std::vector<double> mass;  // lumped physical mass: what gravity acts on
+  std::vector<double> inertial_mass;  // what forces accelerate: the mass, or more when the
+                                      // sheet's inertia is scaled up (quasi-static runs)
   std::vector<std::uint8_t> flags;
   std::vector<Vec> pos_at_build;  // for the neighbour list's expiry test
   // Elements.
@@ -76,6 +78,7 @@ struct SparChains {
       vel.push_back(Vec::Zero());
       force.push_back(Vec::Zero());
       mass.push_back(0.0);
+      inertial_mass.push_back(0.0);
       flags.push_back(0);
       pos_at_build.push_back(p);
     }
@@ -99,6 +102,8 @@ struct SparChains {
       mass[a] += 0.5 * mass_per_length * len;
       mass[b] += 0.5 * mass_per_length * len;
     }
+    for (std::uint32_t i = c.first_node; i < c.first_node + c.node_count; ++i)
+      inertial_mass[i] = mass[i];
     if constexpr (D == 2) {
       for (std::size_t k = 0; k + 1 < ne; ++k) {
         const std::size_t e = c.first_element + k;

@@ -76,8 +76,8 @@ void compute_spar_contacts(World<D>& world) {
       const double a = ri - 0.5 * delta;
       const Vec vrel = v_el - (P.vel[i] + Dim<D>::cross(P.angvel[i], a * nrm));
       // Inverse mass of the element at the contact point: sum of w^2 / m over its nodes.
-      const double inv_m_el =
-          (S.driven(na) ? 0.0 : wa * wa / S.mass[na]) + (S.driven(nb) ? 0.0 : wb * wb / S.mass[nb]);
+      const double inv_m_el = (S.driven(na) ? 0.0 : wa * wa / S.inertial_mass[na]) +
+                              (S.driven(nb) ? 0.0 : wb * wb / S.inertial_mass[nb]);
       const PairLaw& law = world.pair_law(P.material[i], S.material[el]);
       double fn;
       const Vec f =

@@ -60,7 +60,7 @@ double integrate_spar_nodes(World<D>& world) {
   double vmax2 = 0.0;
   for (std::size_t i = 0; i < S.nodes(); ++i) {
     if (!S.driven(i)) {
-      Vec a = S.force[i] / S.mass[i] + world.gravity;
+      Vec a = (S.force[i] + S.mass[i] * world.gravity) / S.inertial_mass[i];
       if (alpha > 0.0) {
         // Cundall's local damping on each component, as for the grains.
         for (int k = 0; k < D; ++k)
@@ -126,7 +126,7 @@ double spar_min_mass_over_stiffness(const World<D>& world) {
   for (std::size_t i = 0; i < S.nodes(); ++i) {
     if (S.driven(i)) continue;
     const double kmax = k[i].maxCoeff();
-    if (kmax > 0.0) best = std::min(best, S.mass[i] / kmax);
+    if (kmax > 0.0) best = std::min(best, S.inertial_mass[i] / kmax);
   }
   return best;
 }

@@ -1,0 +1,87 @@
+#include "lab/anchorage.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace geodem {
+
+namespace {
+
+// Apex and top corners of the V trench; the sheet lies on the front flank.
+struct VTrench {
+  Point2 front, back, apex;
+};
+VTrench v_trench(const AnchorGeometry& g, double y0) {
+  const double x0 = g.runout_length;
+  return {Point2(x0, y0), Point2(x0 + g.trench_width, y0),
+          Point2(x0 + 0.5 * g.trench_width, y0 - g.trench_depth)};
+}
+
+double segment_distance(const Point2& x, const Point2& a, const Point2& b) {
+  const Point2 s = b - a;
+  const double t = std::clamp((x - a).dot(s) / s.squaredNorm(), 0.0, 1.0);
+  return (a + t * s - x).norm();
+}
+
+double cross(const Point2& a, const Point2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+}  // namespace
+
+std::vector<Point2> sheet_corners(const AnchorGeometry& g, double y0) {
+  std::vector<Point2> c = {Point2(-g.free_length, y0), Point2(g.runout_length, y0)};
+  if (g.shape == "L") c.emplace_back(g.runout_length, y0 - g.trench_depth);
+  if (g.shape == "V") c.push_back(v_trench(g, y0).apex);
+  return c;
+}
+
+std::vector<Point2> sheet_nodes(const std::vector<Point2>& corners, double element_length) {
+  std::vector<Point2> nodes = {corners.front()};
+  for (std::size_t k = 0; k + 1 < corners.size(); ++k) {
+    const Point2 a = corners[k], b = corners[k + 1];
+    const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / element_length - 1e-9)));
+    for (int j = 1; j <= n; ++j) nodes.push_back(a + (b - a) * (static_cast<double>(j) / n));
+  }
+  return nodes;
+}
+
+bool overlaps_trench(const AnchorGeometry& g, double y0, const Point2& x, double r) {
+  if (g.shape == "L") {
+    const Point2 lo(g.runout_length, y0 - g.trench_depth), hi(g.runout_length + g.trench_width, y0);
+    const Point2 q = x.cwiseMax(lo).cwiseMin(hi);
+    return (q - x).norm() < r;
+  }
+  if (g.shape == "V") {
+    const VTrench v = v_trench(g, y0);
+    // Inside the triangle (front, apex, back), or within r of one of its sides.
+    const double c1 = cross(v.apex - v.front, x - v.front);
+    const double c2 = cross(v.back - v.apex, x - v.apex);
+    const double c3 = cross(v.front - v.back, x - v.back);
+    const bool inside = (c1 >= 0 && c2 >= 0 && c3 >= 0) || (c1 <= 0 && c2 <= 0 && c3 <= 0);
+    return inside || segment_distance(x, v.front, v.apex) < r ||
+           segment_distance(x, v.apex, v.back) < r || segment_distance(x, v.back, v.front) < r;
+  }
+  return false;
+}
+
+SlipEstimate slip_estimate(const AnchorGeometry& g, double unit_weight, double surcharge,
+                           double tan_delta, double K) {
+  SlipEstimate e;
+  e.K = K;
+  e.sigma_v0 = unit_weight * g.cover + surcharge;
+  e.runout = 2.0 * g.runout_length * e.sigma_v0 * tan_delta;
+  if (g.shape != "runout") {
+    const double half = g.shape == "V" ? 0.5 * g.trench_width : 0.0;
+    const double l = std::hypot(half, g.trench_depth);
+    const double sinb = g.trench_depth / l, cosb = half / l;
+    const double beta = std::atan2(g.trench_depth, half);
+    e.trench = 2.0 * tan_delta * (cosb * cosb + K * sinb * sinb) *
+               (e.sigma_v0 * l + 0.5 * unit_weight * l * l * sinb);
+    e.capstan = std::exp(beta * tan_delta);
+  }
+  e.tension = e.runout + e.capstan * e.trench;
+  return e;
+}
+
+}  // namespace geodem

@@ -1,0 +1,50 @@
+// Geometry of a geosynthetic anchorage (2D, x horizontal towards the anchor, y up) and
+// the analytic slippage estimate of its capacity (docs/lab_tests.md, "Pull-out").
+// The sheet leaves the front wall (x = 0) at the run-out level y0 and runs horizontally
+// for runout_length; an L-shaped anchor then goes straight down the front side of a
+// trench (width trench_width behind it) to trench_depth; a V-shaped anchor goes down
+// the front flank of a V trench (top width trench_width) to its apex.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "lab/pullout_settings.hpp"
+
+namespace geodem {
+
+using Point2 = Eigen::Vector2d;
+
+// Corners of the sheet from the pulled end (outside the box, at x = -free_length) to
+// the anchored end.
+std::vector<Point2> sheet_corners(const AnchorGeometry& g, double y0);
+
+// Nodes along the corners: each straight part cut into equal elements no longer than
+// element_length, with a node on every corner.
+std::vector<Point2> sheet_nodes(const std::vector<Point2>& corners, double element_length);
+
+// True when a disc (centre x, radius r) overlaps the excavated trench below y0.
+bool overlaps_trench(const AnchorGeometry& g, double y0, const Point2& x, double r);
+
+// The slippage estimate: the sheet slides on both faces against soil at rest.
+// - Horizontal run-out of length L under sigma_v0 = gamma cover + q:
+//     F1 = 2 L sigma_v0 tan(delta).
+// - Sloping part of length l at angle beta below the horizontal, under the at-rest
+//   stresses sigma_v = sigma_v0 + gamma z, sigma_h = K sigma_v: the normal stress is
+//   sigma_n = sigma_v (cos^2 beta + K sin^2 beta), so
+//     F2 = 2 tan(delta) (cos^2 beta + K sin^2 beta) (sigma_v0 l + gamma l^2 sin(beta) / 2)
+//   (beta = 90 deg for the L: F2 = 2 tan(delta) K (sigma_v0 D + gamma D^2 / 2)).
+// - The bend of angle beta between them multiplies the tension carried round it by the
+//   capstan factor exp(beta tan(delta)): T = F1 + exp(beta tan(delta)) F2.
+struct SlipEstimate {
+  double tension = 0.0;  // T_analytic_slip (N/m)
+  double runout = 0.0;   // F1
+  double trench = 0.0;   // F2 (before the capstan factor)
+  double capstan = 1.0;  // exp(beta tan(delta))
+  double sigma_v0 = 0.0;
+  double K = 0.0;
+};
+SlipEstimate slip_estimate(const AnchorGeometry& g, double unit_weight, double surcharge,
+                           double tan_delta, double K);
+
+}  // namespace geodem

@@ -1,0 +1,121 @@
+#include "lab/pullout_settings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "scene/scene_settings.hpp"
+
+namespace geodem {
+
+PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
+  PulloutSettings s;
+  s.file = file;
+  TableReader r(root, "", file, &s.resolved);
+  r.choice("kind", "pullout", {"pullout"});
+  r.integer("dimension", 2, 2, 2);
+  s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, (1LL << 62)));
+  r.string("title", "");
+
+  if (auto b = r.table("box")) {
+    s.box_length = b->positive("length", s.box_length);
+    s.foundation = b->positive("foundation", s.foundation);
+    b->finish();
+  }
+
+  auto soil = r.table("soil");
+  if (!soil) r.fail("soil", "missing [soil] table (density, young, friction_deg, radius)");
+  s.soil = read_material(*soil, "soil");
+  if (s.soil.law != LawKind::kLinear || s.soil.kn > 0.0)
+    soil->fail("law", "the pull-out test uses the linear law with a contact modulus ('young')");
+  s.radius = soil->positive("radius", s.radius);
+  s.radius_fuzz = soil->in_range("radius_fuzz", s.radius_fuzz, 0.0, 0.9);
+  s.grains = read_grain_spec(*soil, 2, read_templates(r, 2));
+  s.layer_thickness = soil->positive("layer_thickness", s.layer_thickness);
+  s.settle_unbalanced = soil->in_range("settle_unbalanced", s.settle_unbalanced, 1e-5, 0.5);
+  s.deposit_damping = soil->in_range("deposit_damping", s.deposit_damping, 0.0, 0.99);
+  const bool cohesive = s.soil.normal_cohesion > 0.0 || s.soil.shear_cohesion > 0.0;
+  s.bonds = soil->boolean("bonds", cohesive);
+  if (s.bonds && !cohesive)
+    soil->fail("bonds", "bonds need soil.normal_cohesion or soil.shear_cohesion > 0");
+  s.bond_gap_tolerance = soil->in_range("bond_gap_tolerance", 0.0, 0.0, 0.5);
+  soil->finish();
+  s.wall = s.soil;
+  s.wall.name = "walls";
+  s.wall.friction = 0.0;  // smooth, inert boundaries
+  s.wall.rolling_friction = s.wall.twisting_friction = 0.0;
+  s.wall.normal_cohesion = s.wall.shear_cohesion = 0.0;
+
+  auto a = r.table("anchor");
+  if (!a) r.fail("anchor", "missing [anchor] table (shape, runout_length, cover)");
+  auto& g = s.anchor;
+  g.shape = a->choice("shape", "runout", {"runout", "L", "V"});
+  g.runout_length = a->positive("runout_length", g.runout_length);
+  g.cover = a->positive("cover", g.cover);
+  g.free_length = a->positive("free_length", 4.0 * s.radius);
+  if (g.shape != "runout") {
+    g.trench_depth = a->positive("trench_depth", 0.5 * s.foundation);
+    if (g.trench_depth >= s.foundation)
+      a->fail("trench_depth", "the trench must be shallower than box.foundation");
+    g.trench_width =
+        a->positive("trench_width", g.shape == "V" ? 2.0 * g.trench_depth : 0.5 * g.trench_depth);
+  }
+  const double end_x = g.runout_length + g.trench_width;
+  if (end_x >= s.box_length)
+    a->fail(g.shape == "runout" ? "runout_length" : "trench_width",
+            "the anchor must end inside the box (runout_length + trench_width < box.length)");
+  a->finish();
+
+  if (auto sh = r.table("sheet")) {
+    s.stiffness_J = sh->positive("stiffness_J", s.stiffness_J);
+    s.element_length = sh->positive("element_length", 2.0 * s.radius);
+    s.interface_friction_deg = sh->in_range("interface_friction_deg", 34.0, 0.0, 89.0);
+    s.mass_per_area = sh->positive("mass_per_area", s.mass_per_area);
+    s.thickness = sh->positive("thickness", 0.2 * s.radius);
+    s.bending = sh->non_negative("bending_stiffness", 0.0);
+    s.mass_scaling = sh->boolean("mass_scaling", true);
+    sh->finish();
+  } else {
+    s.element_length = 2.0 * s.radius;
+    s.thickness = 0.2 * s.radius;
+  }
+  if (auto q = r.table("surcharge")) {
+    s.surcharge = q->non_negative("pressure", 0.0);
+    q->finish();
+  }
+  auto p = r.table("pull");
+  if (!p) r.fail("pull", "missing [pull] table (rate, max_displacement)");
+  s.rate = p->in_range("rate", s.rate, 1e-6, 10.0);
+  s.max_displacement = p->positive("max_displacement", s.max_displacement);
+  s.pull_damping = p->in_range("damping", s.pull_damping, 0.0, 0.99);
+  s.history_points = static_cast<int>(p->integer("history_points", 200, 10, 1000000));
+  s.profiles_at = p->numbers(
+      "profiles_at", {0.1 * s.max_displacement, 0.3 * s.max_displacement, s.max_displacement}, 0);
+  for (double d : s.profiles_at)
+    if (!(d > 0.0 && d <= s.max_displacement))
+      p->fail("profiles_at", "displacements must lie in (0, max_displacement]");
+  p->finish();
+  if (auto an = r.table("analytic")) {
+    s.soil_friction_deg = an->in_range("soil_friction_deg", s.soil_friction_deg, 0.0, 89.0);
+    if (an->has("earth_pressure_coefficient"))
+      s.earth_pressure_coefficient = an->in_range("earth_pressure_coefficient", 0.5, 0.0, 10.0);
+    an->finish();
+  }
+  if (auto t = r.table("time")) {
+    s.dt_safety = t->in_range("safety", s.dt_safety, 1e-3, 1.0);
+    s.dt_update_interval = static_cast<int>(t->integer("update_interval", 20, 1, 100000));
+    s.max_settle_steps =
+        static_cast<std::uint64_t>(t->integer("max_settle_steps", 400'000, 100, (1LL << 50)));
+    t->finish();
+  }
+  if (auto o = r.table("output")) {
+    s.vtk = o->boolean("vtk", true);
+    s.plots = o->boolean("plots", true);
+    s.columns = static_cast<int>(o->integer("columns", 24, 1, 10000));
+    o->finish();
+  }
+  r.finish();
+  return s;
+}
+
+}  // namespace geodem
