@@ -179,7 +179,10 @@ def plot_pullout(out, summary, h):
         ax.set_xlabel("pulled-end displacement (mm)")
         ax.set_ylabel("tension at the pulled end (kN/m)", color="tab:blue")
         # Headroom for the T_max label above the curve.
-        ax.set_ylim(min(0.0, min(tension)), 1.2 * max(max(tension), t_max / 1e3, 1e-9))
+        top = max(max(tension), t_max / 1e3, 1e-9)
+        if t_slip is not None and math.isfinite(t_slip):
+            top = max(top, t_slip / 1e3)  # the estimate stays in view
+        ax.set_ylim(min(0.0, min(tension)), 1.2 * top)
         ax.grid(alpha=0.3)
         handles, labels = ax.get_legend_handles_labels()
         soil = h.get("soil_displacement")

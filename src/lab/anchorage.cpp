@@ -66,11 +66,11 @@ bool overlaps_trench(const AnchorGeometry& g, double y0, const Point2& x, double
 }
 
 SlipEstimate slip_estimate(const AnchorGeometry& g, double unit_weight, double surcharge,
-                           double tan_delta, double K) {
+                           double tan_delta, double K, double runout_load) {
   SlipEstimate e;
   e.K = K;
   e.sigma_v0 = unit_weight * g.cover + surcharge;
-  e.runout = 2.0 * g.runout_length * e.sigma_v0 * tan_delta;
+  e.runout = 2.0 * tan_delta * (runout_load >= 0.0 ? runout_load : g.runout_length * e.sigma_v0);
   if (g.shape != "runout") {
     const double half = g.shape == "V" ? 0.5 * g.trench_width : 0.0;
     const double l = std::hypot(half, g.trench_depth);

@@ -28,7 +28,10 @@ bool overlaps_trench(const AnchorGeometry& g, double y0, const Point2& x, double
 
 // The slippage estimate: the sheet slides on both faces against soil at rest.
 // - Horizontal run-out of length L under sigma_v0 = gamma cover + q:
-//     F1 = 2 L sigma_v0 tan(delta).
+//     F1 = 2 L sigma_v0 tan(delta),
+//   or, given the load on the run-out (the weight of the soil above it plus q L, which
+//   a cover that thins towards a free front makes smaller than L sigma_v0),
+//     F1 = 2 tan(delta) x load.
 // - Sloping part of length l at angle beta below the horizontal, under the at-rest
 //   stresses sigma_v = sigma_v0 + gamma z, sigma_h = K sigma_v: the normal stress is
 //   sigma_n = sigma_v (cos^2 beta + K sin^2 beta), so
@@ -45,6 +48,6 @@ struct SlipEstimate {
   double K = 0.0;
 };
 SlipEstimate slip_estimate(const AnchorGeometry& g, double unit_weight, double surcharge,
-                           double tan_delta, double K);
+                           double tan_delta, double K, double runout_load = -1.0);
 
 }  // namespace geodem

@@ -53,6 +53,7 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
   g.runout_length = a->positive("runout_length", g.runout_length);
   g.cover = a->positive("cover", g.cover);
   g.free_length = a->positive("free_length", 4.0 * s.radius);
+  g.front = a->choice("front", "wall", {"wall", "free"});
   if (g.shape != "runout") {
     g.trench_depth = a->positive("trench_depth", 0.5 * s.foundation);
     if (g.trench_depth >= s.foundation)

@@ -21,6 +21,9 @@ struct AnchorGeometry {
   double trench_depth = 0.0;     // below the run-out level (L, V)
   double trench_width = 0.0;     // L: width of the trench behind the sheet; V: top width
   double free_length = 0.04;     // sheet outside the box, up to the pulled end
+  // Above the run-out level at x = 0: "free" (the cover ends in a free face, as at the
+  // crest of a slope) or "wall" (a rigid, smooth front wall, as in a pull-out box).
+  std::string front = "wall";
 };
 
 struct PulloutSettings {

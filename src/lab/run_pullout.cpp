@@ -37,10 +37,11 @@ namespace {
 using Vec = Dim<2>::Vec;
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kGravity = 9.81;
-// Porosity guesses for the layer sizes: a dense 2D packing and the loose cloud a layer
-// starts as (random sequential addition jams near 0.45 in 2D).
-constexpr double kDensePorosity = 0.16, kLoosePorosity = 0.6;
+// Layer sizes: a dense 2D packing's porosity guess, and the fraction of its height the
+// bounding discs of a loose cloud fill (random sequential addition jams near 0.5 in 2D).
+constexpr double kDensePorosity = 0.16, kLooseFill = 0.3;
 enum : std::uint16_t { kSoil = 0, kWalls = 1, kSheet = 2 };
+constexpr std::size_t kFrontWall = 1;  // index in World::walls (floor, front, back)
 
 struct Pullout {
   const PulloutSettings& s;
@@ -50,7 +51,8 @@ struct Pullout {
   Random rng;
   std::vector<ResolvedKind<2>> kinds;
   double mean_grain_area = 0.0;
-  double y0 = 0.0;  // run-out level: top of the foundation
+  double bound_ratio = 1.0;  // area of the grains' bounding discs over their own area
+  double y0 = 0.0;           // run-out level: top of the foundation
   std::uint64_t total_steps = 0;
   HistoryCsv prep_csv;
   double node_mass_factor = 1.0;
@@ -95,9 +97,13 @@ struct Pullout {
     double fsum = 0.0;
     for (const auto& k : kinds) fsum += k.fraction;
     const double fuzz = s.radius_fuzz;
-    for (const auto& k : kinds)
-      mean_grain_area += k.fraction / fsum * k.clump.volume * k.size * k.size *
-                         (1.0 + fuzz * fuzz / 3.0) * s.radius * s.radius;
+    double bound_area = 0.0;
+    for (const auto& k : kinds) {
+      const double scale2 = k.size * k.size * (1.0 + fuzz * fuzz / 3.0) * s.radius * s.radius;
+      mean_grain_area += k.fraction / fsum * k.clump.volume * scale2;
+      bound_area += k.fraction / fsum * Dim<2>::volume(k.clump.bounding_radius) * scale2;
+    }
+    bound_ratio = bound_area / mean_grain_area;
     prep_csv.open(opt.out_dir + "/preparation.csv",
                   {"stage", "step", "time", "grains", "surface", "unbalanced", "kinetic_energy"});
   }
@@ -108,15 +114,16 @@ struct Pullout {
       top = std::max(top, w.particles.pos[i].y() + w.particles.radius[i]);
     return top;
   }
-  // Median over columns of the highest grain top: the level of the free surface.
-  double surface() const {
+  // Median over columns of [x0, x1] of the highest grain top: the free surface's level.
+  double surface(double x0, double x1) const {
     constexpr int kCols = 12;
     std::vector<double> top(kCols, 0.0);
     for (std::size_t i = 0; i < w.particles.size(); ++i) {
-      const int c =
-          std::clamp(static_cast<int>(w.particles.pos[i].x() / s.box_length * kCols), 0, kCols - 1);
-      top[static_cast<std::size_t>(c)] = std::max(top[static_cast<std::size_t>(c)],
-                                                  w.particles.pos[i].y() + w.particles.radius[i]);
+      const double x = w.particles.pos[i].x();
+      if (x < x0 || x > x1) continue;
+      const auto c = static_cast<std::size_t>(
+          std::clamp(static_cast<int>((x - x0) / (x1 - x0) * kCols), 0, kCols - 1));
+      top[c] = std::max(top[c], w.particles.pos[i].y() + w.particles.radius[i]);
     }
     std::nth_element(top.begin(), top.begin() + kCols / 2, top.end());
     return top[kCols / 2];
@@ -124,7 +131,8 @@ struct Pullout {
 
   void prep_row(double stage, double unb) {
     prep_csv.row({stage, static_cast<double>(w.step), w.time,
-                  static_cast<double>(w.particles.size()), surface(), unb, kinetic_energy(w)});
+                  static_cast<double>(w.particles.size()), surface(0.0, s.box_length), unb,
+                  kinetic_energy(w)});
   }
 
   // Steps until the unbalanced force ratio falls below the settings' threshold.
@@ -148,20 +156,21 @@ struct Pullout {
     }
   }
 
-  // Deposits layers over the whole box until the surface reaches `height`.
-  void deposit_to(double height, const std::string& stage, double stage_code) {
+  // Deposits layers over [x0, x1] until the surface there reaches `height`.
+  void deposit_to(double height, double x0, double x1, const std::string& stage,
+                  double stage_code) {
     int layer = 0;
-    while (w.particles.size() == 0 || surface() < height) {
+    while (w.particles.size() == 0 || surface(x0, x1) < height) {
       const double base = w.particles.size() == 0 ? 0.0 : top_of_grains();
-      const double from = w.particles.size() == 0 ? 0.0 : surface();
+      const double from = w.particles.size() == 0 ? 0.0 : surface(x0, x1);
       const double dense = std::min(s.layer_thickness, height - from + 2.0 * s.radius);
       const auto count = static_cast<std::size_t>(
-          std::ceil((1.0 - kDensePorosity) * s.box_length * dense / mean_grain_area));
-      const double loose = dense * (1.0 - kDensePorosity) / (1.0 - kLoosePorosity);
+          std::ceil((1.0 - kDensePorosity) * (x1 - x0) * dense / mean_grain_area));
+      const double loose = dense * (1.0 - kDensePorosity) * bound_ratio / kLooseFill;
       try {
-        add_random_grains<2>(w, kinds, Vec(0.0, base), Vec(s.box_length, base + loose), count,
-                             kLoosePorosity, s.radius_fuzz, s.soil.density, kSoil, rng, Vec::Zero(),
-                             s.radius);
+        add_random_grains<2>(w, kinds, Vec(x0, base), Vec(x1, base + loose), count,
+                             1.0 - kLooseFill, s.radius_fuzz, s.soil.density, kSoil, rng,
+                             Vec::Zero(), s.radius);
       } catch (const std::runtime_error& e) {
         throw InputError(s.file, 0, "soil.layer_thickness", e.what());
       }
@@ -181,7 +190,7 @@ struct Pullout {
     nlohmann::json prep;
     const auto& P = w.particles;
     y0 = s.foundation;
-    deposit_to(y0 + 2.0 * s.radius, "foundation", 1);
+    deposit_to(y0 + 2.0 * s.radius, 0.0, s.box_length, "foundation", 1);
     // Flat top at the run-out level, and the trench.
     const double t = s.thickness;
     remove_grains(w, select([&](std::size_t i) {
@@ -206,7 +215,10 @@ struct Pullout {
     const std::vector<char> found_mask(foundation, 1);
     hold_grains(w, found_mask, true);
     const double top = y0 + s.anchor.cover;
-    deposit_to(top + 2.0 * s.radius, "fill", 2);
+    if (s.anchor.shape != "runout")  // the trench first, then the whole cover
+      deposit_to(y0, s.anchor.runout_length, s.anchor.runout_length + s.anchor.trench_width,
+                 "trench fill", 2);
+    deposit_to(top + 2.0 * s.radius, 0.0, s.box_length, "cover", 2);
     // Renumbering moved the held grains: find them by id (new grains have larger ids).
     auto is_foundation = [&](std::size_t i) { return P.id[i] < foundation; };
     remove_grains(w, select([&](std::size_t i) {
@@ -214,8 +226,23 @@ struct Pullout {
                   }));
     hold_grains(w, select(is_foundation), false);
     prep["fill_grains"] = P.size() - foundation;
+    if (s.anchor.front == "free") {
+      // The front wall now holds the foundation only: the cover's face is free.
+      Wall<2>& front = w.walls[kFrontWall];
+      front.kind = WallKind::kSegment;
+      front.point = Vec(0.0, -s.radius);
+      front.end = Vec(0.0, y0);
+      w.rebuild_needed = true;
+    }
     if (s.surcharge > 0.0) add_surcharge_plate(top);
     settle("consolidation", 3);
+    if (s.anchor.front == "free") {
+      // Grains that fell off the free face are no longer part of the anchorage.
+      const std::size_t spilled =
+          remove_grains(w, select([&](std::size_t i) { return P.pos[i].x() < 0.0; }));
+      prep["spilled_grains"] = spilled;
+      if (spilled > 0) settle("consolidation", 3);
+    }
     if (s.bonds) {
       prep["bonds"] = create_bonds(w, s.bond_gap_tolerance);
       settle("bonded", 4);
@@ -318,23 +345,40 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
   }
   std::size_t zone_count = 0;
   for (char z : zone) zone_count += z;
-  auto soil_displacement = [&]() {  // mean displacement of the anchoring soil, towards the pull
-    double sum = 0.0;
+  // Displacement of the anchoring soil towards the pull: the mean, and the median (which
+  // grains that roll off a free face far from the anchor do not pull up).
+  std::vector<double> moved;
+  auto soil_displacement = [&](bool median = false) {
+    moved.clear();
     for (std::size_t i = 0; i < n; ++i)
-      if (zone[P.id[i]]) sum += start[P.id[i]].x() - P.pos[i].x();
-    return zone_count ? sum / static_cast<double>(zone_count) : 0.0;
+      if (zone[P.id[i]]) moved.push_back(start[P.id[i]].x() - P.pos[i].x());
+    if (moved.empty()) return 0.0;
+    if (median) {
+      std::nth_element(moved.begin(), moved.begin() + moved.size() / 2, moved.end());
+      return moved[moved.size() / 2];
+    }
+    double sum = 0.0;
+    for (double d : moved) sum += d;
+    return sum / static_cast<double>(moved.size());
   };
 
-  // Unit weight of the cover (solid area of the grains in it x density x g / its area)
-  // for the analytic estimate.
-  Box<2> cover{Vec(0.0, run.y0 + s.thickness), Vec(s.box_length, run.y0 + s.anchor.cover)};
+  // Unit weight of the cover where it is whole (next to the end of the run-out): solid
+  // area in the box x density x g over the box's area; and the load on the run-out: the
+  // weight of the soil above it plus the surcharge, for the analytic estimate.
+  const double L = s.anchor.runout_length;
+  Box<2> cover{Vec(std::max(0.0, L - 2.0 * s.anchor.cover), run.y0 + s.thickness),
+               Vec(L, run.y0 + s.anchor.cover)};
   const double unit_weight =
       solid_volume_in_box(w, cover) / cover.volume() * s.soil.density * kGravity;
+  const double sigma_q = run.surcharge ? run.surcharge->pressure(w) : 0.0;
+  double runout_load = sigma_q * L;
+  for (std::size_t i = 0; i < n; ++i)
+    if (P.pos[i].y() > run.y0 && P.pos[i].x() > 0.0 && P.pos[i].x() < L)
+      runout_load += Dim<2>::volume(P.radius[i]) * s.soil.density * kGravity;
   const double K = s.earth_pressure_coefficient >= 0.0 ? s.earth_pressure_coefficient
                                                        : 1.0 - std::sin(s.soil_friction_deg * kDeg);
-  const double sigma_q = run.surcharge ? run.surcharge->pressure(w) : 0.0;
-  const SlipEstimate est =
-      slip_estimate(s.anchor, unit_weight, sigma_q, std::tan(s.interface_friction_deg * kDeg), K);
+  const SlipEstimate est = slip_estimate(s.anchor, unit_weight, sigma_q,
+                                         std::tan(s.interface_friction_deg * kDeg), K, runout_load);
 
   write_states(opt.out_dir + "/states/grains_initial.csv",
                opt.out_dir + "/states/sheet_initial.csv", w, column);
@@ -345,7 +389,7 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
   HistoryCsv history;
   history.open(opt.out_dir + "/history.csv",
                {"step", "time", "displacement", "tension", "tension_step", "soil_displacement",
-                "kinetic_energy", "unbalanced", "sheet_contacts"});
+                "soil_displacement_median", "kinetic_energy", "unbalanced", "sheet_contacts"});
   HistoryCsv profiles;
   profiles.open(opt.out_dir + "/tension_profiles.csv", {"displacement", "s", "tension"});
   std::vector<double> profile_at = s.profiles_at;
@@ -373,7 +417,7 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
       const double T = tension_sum / static_cast<double>(tension_steps);
       const double soil = soil_displacement();
       history.row({static_cast<double>(w.step), w.time, displacement, T, S.tension[0], soil,
-                   kinetic_energy(w), unbalanced_force_ratio(w),
+                   soil_displacement(true), kinetic_energy(w), unbalanced_force_ratio(w),
                    static_cast<double>(w.stats.spar_contacts)});
       if (T > t_max) t_max = T, d_at_max = displacement, soil_at_max = soil;
       tension_sum = 0.0;
@@ -403,6 +447,7 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
   results["T_analytic_slip"] = est.tension;
   results["T_max_over_analytic"] = est.tension > 0.0 ? t_max / est.tension : 0.0;
   results["soil_displacement_mean"] = soil_displacement();
+  results["soil_displacement_median"] = soil_displacement(true);
   results["soil_displacement_at_T_max"] = soil_at_max;
   results["soil_displacement_ratio"] = soil_displacement() / s.max_displacement;
   results["anchoring_zone_grains"] = zone_count;

@@ -146,6 +146,31 @@ void build_world(const SceneSettings& s, World<D>& world) {
       }
     }
   }
+  for (const auto& c : s.chains) {
+    std::vector<Vec> nodes = {to_vec<D>(c.points.front())};
+    for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
+      const Vec a = to_vec<D>(c.points[k]), b = to_vec<D>(c.points[k + 1]);
+      const int parts =
+          c.element_length > 0.0
+              ? std::max(1, static_cast<int>(std::ceil((b - a).norm() / c.element_length - 1e-9)))
+              : 1;
+      for (int j = 1; j <= parts; ++j) nodes.push_back(a + (b - a) * (double(j) / parts));
+    }
+    const std::size_t first = world.spars.nodes();
+    world.spars.add_chain(c.name, nodes, c.stiffness, c.mass_per_length, c.thickness,
+                          material_index(s.materials, c.material), c.bending);
+    const auto count = static_cast<long long>(nodes.size());
+    for (long long h : c.held) {
+      const long long k = h < 0 ? count + h : h;
+      if (k < 0 || k >= count)
+        throw InputError(s.file, 0, "chains." + c.name + ".held",
+                         "node " + std::to_string(h) + " does not exist (the chain has " +
+                             std::to_string(count) + " nodes)");
+      const std::size_t i = first + static_cast<std::size_t>(k);
+      world.spars.flags[i] = kNodeDriven;
+      world.spars.vel[i] = to_vec<D>(c.velocity);
+    }
+  }
   world.resolve_pair_laws();
   for (const auto& p : s.pairs) {
     const auto a = material_index(s.materials, p.a), b = material_index(s.materials, p.b);

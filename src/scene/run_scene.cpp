@@ -1,5 +1,6 @@
 #include "scene/run_scene.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -22,9 +23,10 @@ const char* axis(int k) {
 
 template <int D>
 Box<D> grains_box(const World<D>& w) {
+  using Vec = typename Dim<D>::Vec;
+  if (w.particles.size() == 0) return Box<D>{Vec::Zero(), Vec::Ones()};  // a chain alone
   Box<D> b{w.particles.pos[0], w.particles.pos[0]};
   for (std::size_t i = 0; i < w.particles.size(); ++i) {
-    using Vec = typename Dim<D>::Vec;
     const Vec r = Vec::Constant(w.particles.radius[i]);
     b.lo = b.lo.cwiseMin(w.particles.pos[i] - r);
     b.hi = b.hi.cwiseMax(w.particles.pos[i] + r);
@@ -59,6 +61,17 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     for (int k = 0; k < D; ++k) cols.push_back("wall_" + wall.name + "_f" + axis(k));
     if (wall.area > 0.0) cols.push_back("wall_" + wall.name + "_stress");
   }
+  for (const auto& c : w.spars.chains)
+    for (const char* q : {"_tension_first", "_tension_last", "_tension_max"})
+      cols.push_back("chain_" + c.name + q);
+  // Tensions of a chain's first and last elements, and its largest.
+  auto chain_tensions = [&w](const typename SparChains<D>::Chain& c) {
+    const auto& S = w.spars;
+    const std::size_t e0 = c.first_element, e1 = c.first_element + c.node_count - 2;
+    double tmax = 0.0;
+    for (std::size_t e = e0; e <= e1; ++e) tmax = std::max(tmax, S.tension[e]);
+    return std::array<double, 3>{S.tension[e0], S.tension[e1], tmax};
+  };
   HistoryCsv history;
   history.open(opt.out_dir + "/history.csv", cols);
   VtkSeries<D> vtk(opt.out_dir);
@@ -88,6 +101,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
       for (int k = 0; k < D; ++k) row.push_back(wall.force[k]);
       if (wall.area > 0.0) row.push_back(wall.normal_stress());
     }
+    for (const auto& c : w.spars.chains)
+      for (double t : chain_tensions(c)) row.push_back(t);
     history.row(row);
   };
 
@@ -173,6 +188,18 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     if (wall.area > 0.0) walls[wall.name]["normal_stress"] = wall.normal_stress();
   }
   results["walls"] = walls;
+  if (!w.spars.empty()) {
+    nlohmann::json chains = nlohmann::json::object();
+    for (const auto& c : w.spars.chains) {
+      const auto t = chain_tensions(c);
+      chains[c.name] = {{"nodes", c.node_count},
+                        {"elements", c.node_count - 1},
+                        {"tension_first", t[0]},
+                        {"tension_last", t[1]},
+                        {"tension_max", t[2]}};
+    }
+    results["chains"] = chains;
+  }
 
   nlohmann::json summary;
   summary["kind"] = "scene";

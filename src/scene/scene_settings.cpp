@@ -175,6 +175,36 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     t.finish();
   }
 
+  std::set<std::string> chain_names;
+  for (auto& t : r.tables("chains")) {
+    ChainSpec c;
+    c.name = t.string("name", "chain" + std::to_string(s.chains.size()));
+    if (!chain_names.insert(c.name).second) t.fail("name", "duplicate chain name '" + c.name + "'");
+    c.material = material_name(t, "material");
+    c.points = t.number_rows("points", D);
+    if (c.points.size() < 2) t.fail("points", "a chain needs at least 2 points");
+    for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
+      double d2 = 0.0;
+      for (std::size_t j = 0; j < D; ++j)
+        d2 += (c.points[k + 1][j] - c.points[k][j]) * (c.points[k + 1][j] - c.points[k][j]);
+      if (d2 == 0.0) t.fail("points", "two consecutive points coincide");
+    }
+    c.element_length = t.non_negative("element_length", 0.0);
+    c.stiffness = t.positive("stiffness_J", 1e5);
+    c.mass_per_length = t.positive("mass_per_length", 0.5);
+    c.thickness = t.non_negative("thickness", 0.0);
+    c.bending = t.non_negative("bending_stiffness", 0.0);
+    if (c.bending > 0.0 && s.dimension != 2)
+      t.fail("bending_stiffness", "bending stiffness of chains is available in 2D only");
+    for (double h : t.numbers("held", {}, 0)) {
+      if (h != std::floor(h)) t.fail("held", "expected node indices (integers)");
+      c.held.push_back(static_cast<long long>(h));
+    }
+    c.velocity = vec(t, "velocity", zero);
+    s.chains.push_back(c);
+    t.finish();
+  }
+
   for (auto& t : r.tables("particles")) {
     ParticleSpec p;
     p.position = vec(t, "position", zero);

@@ -30,6 +30,20 @@ struct WallSpec {
   double area = 0.0;
 };
 
+// A spar chain (geosynthetic sheet in 2D, cable in 3D) through `points`, each straight
+// part cut into elements no longer than element_length (0: one element per part).
+struct ChainSpec {
+  std::string name, material;
+  std::vector<List> points;
+  double element_length = 0.0;
+  double stiffness = 0.0;  // J
+  double mass_per_length = 0.0;
+  double thickness = 0.0;
+  double bending = 0.0;
+  std::vector<long long> held;  // node indices (negative: from the end) moving at `velocity`
+  List velocity;
+};
+
 struct ParticleSpec {
   List position, velocity, angular_velocity;
   double radius = 0.0;
@@ -100,6 +114,7 @@ struct SceneSettings {
   std::vector<Material> materials;
   std::vector<PairSpec> pairs;
   std::vector<WallSpec> walls;
+  std::vector<ChainSpec> chains;
   std::vector<ParticleSpec> particles;
   std::vector<TemplateSpec> templates;
   std::vector<ClumpSpec> clumps;

@@ -41,6 +41,38 @@ history_every = 50
 """
 
 
+# A run-out anchor in a small frictional soil box (about 600 discs): the quick version of
+# the run-out comparison of docs/lab_tests.md. Interface friction (20 deg) well below the
+# soil's, and a front wall that keeps the cover in the box: the sheet slips out of the soil.
+SMALL_PULLOUT = """
+kind = "pullout"
+seed = 1
+[box]
+length = 0.8
+foundation = 0.12
+[soil]
+density = 2600.0
+young = 2e7
+friction_deg = 30.0
+radius = 0.008
+radius_fuzz = 0.25
+[anchor]
+shape = "{shape}"
+runout_length = 0.5
+cover = 0.1
+front = "wall"
+{trench}
+[sheet]
+stiffness_J = 1e5
+interface_friction_deg = 20.0
+[pull]
+rate = 0.02
+max_displacement = 0.03
+[analytic]
+soil_friction_deg = 30.0
+"""
+
+
 def scene(dim):
     if dim == 3:
         return SMALL_SCENE.format(dim=3, gravity="[0, 0, -9.81]", normal="[0, 0, 1]",
@@ -73,7 +105,9 @@ class CliTest(unittest.TestCase):
         self.assertEqual(run("--help").returncode, 0)
 
     def test_check_examples(self):
-        for ex in sorted((ROOT / "examples").glob("*/scenario.toml")):
+        examples = list((ROOT / "examples").glob("*/scenario.toml"))
+        examples += list((ROOT / "examples" / "pullout2d").glob("*.toml"))
+        for ex in sorted(examples):
             r = run("check", str(ex))
             self.assertEqual(r.returncode, 0, f"{ex}: {r.stderr}")
 
@@ -242,6 +276,58 @@ create = "initial"
         self.assertEqual(json.loads((out / "summary.json").read_text())["results"]["particles"], 52)
         (self.dir / "grains.txt").write_text("1 0.05 0.05 oops\n")
         self.assertBadInput(text, "grains.txt:1", "oops")
+
+    def test_pullout_runout_against_the_slippage_estimate(self):
+        out = self.dir / "out"
+        r = run("run", self.write(SMALL_PULLOUT.format(shape="runout", trench="")),
+                "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = json.loads((out / "summary.json").read_text())
+        res = s["results"]
+        for key in ("T_max", "displacement_at_T_max", "T_analytic_slip",
+                    "soil_displacement_mean"):
+            self.assertIn(key, res)
+        # Slippage: T_max within 20 % of the estimate, the soil moves far less than the sheet.
+        ratio = res["T_max"] / res["T_analytic_slip"]
+        print(f"[ measured ] small run-out: T_max / T_analytic_slip = {ratio:.3f}")
+        self.assertLess(abs(ratio - 1.0), 0.2)
+        self.assertLess(res["soil_displacement_mean"], 0.5 * 0.03)
+        with open(out / "history.csv") as f:
+            rows = list(csv.DictReader(f))
+        self.assertGreater(len(rows), 100)
+        self.assertTrue(all(float(r["tension"]) >= 0.0 for r in rows))
+        self.assertAlmostEqual(float(rows[-1]["displacement"]), 0.03, delta=1e-3)
+        for name in ("pullout.png", "tension_profiles.png", "pullout_initial.png",
+                     "pullout_final.png", "tension_profiles.csv", "states/grains_final.csv",
+                     "states/sheet_initial.csv"):
+            self.assertTrue((out / name).exists(), name)
+        pvd = (out / "vtk" / "particles.pvd").read_text()
+        self.assertIn("spars_000000.vtp", pvd)
+
+    def test_scene_with_a_chain(self):
+        text = (Path(__file__).parent / "chain_scene.toml").read_text()
+        text = text.replace("duration = 3.0 ", "duration = 0.5 ")
+        out = self.dir / "out"
+        r = run("run", self.write(text), "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = json.loads((out / "summary.json").read_text())["results"]
+        cable = res["chains"]["cable"]
+        self.assertEqual(cable["nodes"], 61)
+        self.assertGreater(cable["tension_max"], 0.0)
+        with open(out / "history.csv") as f:
+            header = next(csv.reader(f))
+        self.assertIn("chain_cable_tension_first", header)
+        self.assertIn("spars_000000.vtp", (out / "vtk" / "particles.pvd").read_text())
+        self.assertBadInput(text.replace("held = [0, -1]", "held = [0, 99]"), "held", "99")
+        self.assertBadInput(text.replace('material = "sheet"', 'material = "steel"'),
+                            "chains.0.material", "steel")
+
+    def test_pullout_input_errors(self):
+        text = SMALL_PULLOUT.format(shape="L", trench="trench_depth = 0.2")
+        self.assertBadInput(text, "trench_depth", "shallower")
+        self.assertBadInput(SMALL_PULLOUT.format(shape="U", trench=""), "anchor.shape", "runout")
+        text = SMALL_PULLOUT.format(shape="L", trench="trench_depth = 0.05\ntrench_width = 0.5")
+        self.assertBadInput(text, "trench_width", "inside the box")
 
     def test_plot_command(self):
         out = self.dir / "out"

@@ -8,7 +8,9 @@
 // - a grain that cannot roll stays on an element tilted below the interface friction
 //   angle and slides above it with a = g (sin(theta) - tan(delta) cos(theta));
 // - a grain sliding along a chain keeps its friction force mu N, without a jump, as it
-//   crosses from one element to the next; at a node it is counted once.
+//   crosses from one element to the next; at a node it is counted once;
+// - bending forces are minus the gradient of k_b (phi - phi0)^2 / 2 (central differences),
+//   with no net force or moment.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -271,6 +273,53 @@ TEST(SparChain2D, GrainOnASharedNodeIsCountedOnce) {
     EXPECT_LT(rel_err(-sum.y(), g.weight), 1e-6);
     EXPECT_LT(std::abs(sum.x()), 1e-6 * g.weight);
   }
+}
+
+TEST(SparChain2D, BendingForcesDeriveFromTheirPotential) {
+  World<2> w;
+  const auto mat = add_material(w, linear_material(1e5, 5e4, 0.5, 1.0));
+  w.resolve_pair_laws();
+  const double kb = 3.0;
+  // A bent chain at rest (its rest turns), then deformed; J = 0 isolates the bending.
+  w.spars.add_chain("sheet",
+                    {Vec<2>(0.0, 0.0), Vec<2>(0.1, 0.02), Vec<2>(0.2, 0.0), Vec<2>(0.27, -0.05)},
+                    0.0, 0.1, 0.0, mat, kb);
+  auto& S = w.spars;
+  S.pos[1] += Vec<2>(0.004, 0.013);
+  S.pos[2] += Vec<2>(-0.006, 0.004);
+  auto energy = [&]() {
+    double e = 0.0;
+    for (std::size_t k = 0; k + 1 < S.elements(); ++k) {
+      const double d = S.turn_angle(k) - S.rest_turn[k];
+      e += 0.5 * kb * d * d;
+    }
+    return e;
+  };
+  for (auto& f : S.force) f.setZero();
+  spar_element_forces(w);
+  const std::vector<Vec<2>> force = S.force;
+  double worst = 0.0, scale = 0.0;
+  Vec<2> net = Vec<2>::Zero();
+  double moment = 0.0;
+  for (std::size_t i = 0; i < S.nodes(); ++i) {
+    net += force[i];
+    moment += S.pos[i].x() * force[i].y() - S.pos[i].y() * force[i].x();
+    scale = std::max(scale, force[i].norm());
+    for (int k = 0; k < 2; ++k) {
+      const double h = 1e-7, x0 = S.pos[i][k];
+      S.pos[i][k] = x0 + h;
+      const double ep = energy();
+      S.pos[i][k] = x0 - h;
+      const double em = energy();
+      S.pos[i][k] = x0;
+      worst = std::max(worst, std::abs(force[i][k] + (ep - em) / (2.0 * h)));
+    }
+  }
+  report("bending: max |F + dE/dx| / max |F|", worst / scale);
+  EXPECT_GT(scale, 1.0);
+  EXPECT_LT(worst / scale, 1e-6);
+  EXPECT_LT(net.norm(), 1e-12 * scale);
+  EXPECT_LT(std::abs(moment), 1e-12 * scale);
 }
 
 }  // namespace
