@@ -34,6 +34,8 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
   s.layer_thickness = soil->positive("layer_thickness", s.layer_thickness);
   s.settle_unbalanced = soil->in_range("settle_unbalanced", s.settle_unbalanced, 1e-5, 0.5);
   s.deposit_damping = soil->in_range("deposit_damping", s.deposit_damping, 0.0, 0.99);
+  if (soil->has("deposit_friction_deg"))
+    s.deposit_friction_deg = soil->in_range("deposit_friction_deg", 0.0, 0.0, 89.0);
   const bool cohesive = s.soil.normal_cohesion > 0.0 || s.soil.shear_cohesion > 0.0;
   s.bonds = soil->boolean("bonds", cohesive);
   if (s.bonds && !cohesive)

@@ -42,6 +42,9 @@ struct PulloutSettings {
   bool bonds = false;               // cohesive soil: bond the contacts after filling
   double bond_gap_tolerance = 0.0;
   double deposit_damping = 0.4;
+  // Contact friction while the soil is deposited (< 0: the soil's own): lower friction
+  // packs it denser, as the friction reduction of the triaxial test does.
+  double deposit_friction_deg = -1.0;
   // [anchor]
   AnchorGeometry anchor;
   // [sheet]

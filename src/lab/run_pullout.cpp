@@ -87,6 +87,8 @@ struct Pullout {
       law->bond_tension = law->bond_shear = 0.0;
     }
     w.update_contact_extras();
+    if (s.deposit_friction_deg >= 0.0)
+      set_soil_friction(std::tan(s.deposit_friction_deg * kDeg) / s.soil.friction);
     w.gravity = Vec(0.0, -kGravity);
     w.auto_dt = true;
     w.dt_safety = s.dt_safety;
@@ -106,6 +108,15 @@ struct Pullout {
     bound_ratio = bound_area / mean_grain_area;
     prep_csv.open(opt.out_dir + "/preparation.csv",
                   {"stage", "step", "time", "grains", "surface", "unbalanced", "kinetic_energy"});
+  }
+
+  // Scales the soil's contact friction (and its rolling friction with it) from the
+  // material's values; 1 restores them.
+  void set_soil_friction(double ratio) {
+    PairLaw& law = w.pair_laws[kSoil * 3 + kSoil];
+    law.mu = s.soil.friction * ratio;
+    law.roll_mu = s.soil.rolling_friction * ratio;
+    law.twist_mu = s.soil.twisting_friction * ratio;
   }
 
   double top_of_grains() const {
@@ -235,6 +246,7 @@ struct Pullout {
       w.rebuild_needed = true;
     }
     if (s.surcharge > 0.0) add_surcharge_plate(top);
+    set_soil_friction(1.0);  // the soil's own friction from here on
     settle("consolidation", 3);
     if (s.anchor.front == "free") {
       // Grains that fell off the free face are no longer part of the anchorage.
