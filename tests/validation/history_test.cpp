@@ -209,5 +209,52 @@ TYPED_TEST(ContactHistory, RenumberingKeepsRollingAndTwistingSprings) {
   EXPECT_LT(err, 1e-12);
 }
 
+// Grain-spar element springs (a sheet on the floor of the shear box, dragged with it) are
+// carried over by renumbering too: one step later, the forces on grains and nodes agree.
+TYPED_TEST(ContactHistory, RenumberingKeepsSparContactSprings) {
+  constexpr int D = TypeParam::value;
+  auto make = [] {
+    World<D> w = make_shear_box<D>();
+    const double width = w.walls[1].point[0];  // wall 1: the x_hi wall
+    // 2D: one sheet; 3D: parallel cables across the floor.
+    const int lines = D == 2 ? 1 : 6;
+    for (int c = 0; c < lines; ++c) {
+      std::vector<Vec<D>> pts;
+      for (int k = 0; k <= 12; ++k)
+        pts.push_back(vec<D>(width * k / 12.0, 0.0, width * (c + 0.5) / lines));
+      w.spars.add_chain("sheet" + std::to_string(c), pts, 1e3, 1e-3, 0.4 * kR0, 1);
+    }
+    for (std::size_t i = 0; i < w.spars.nodes(); ++i) w.spars.flags[i] = kNodeDriven;
+    return w;
+  };
+  auto run = [](World<D>& w) {
+    run_shear(w, 3000, 0, false);
+    for (auto& v : w.spars.vel) v = vec<D>(0.02, 0.0, 0.0);  // dragged with the floor
+    run_shear(w, 0, 1000, false);
+  };
+  World<D> w = make(), reference = make();
+  run(w);
+  run(reference);
+  std::size_t loaded = 0;
+  for (const auto& s : w.nlist.spar_spring) loaded += s.norm() > 0.0;
+  report(std::to_string(D) + "D renumbering with a sheet: loaded grain-sheet springs",
+         static_cast<double>(loaded));
+  ASSERT_GT(loaded, 3u) << "the test needs loaded grain-sheet springs";
+  w.sort_interval = 1;
+  build_neighbour_list(w);
+  const double err = step_and_compare(
+      reference, w, [](const World<D>& x, std::size_t i) { return Vec<D>(x.particles.force[i]); });
+  double node_err = 0.0, node_scale = 0.0;
+  for (std::size_t i = 0; i < w.spars.nodes(); ++i) {
+    node_err = std::max(node_err, (w.spars.force[i] - reference.spars.force[i]).norm());
+    node_scale = std::max(node_scale, reference.spars.force[i].norm());
+  }
+  report(std::to_string(D) + "D renumbering with a sheet: grain force difference / largest", err);
+  report(std::to_string(D) + "D renumbering with a sheet: node force difference / largest",
+         node_err / node_scale);
+  EXPECT_LT(err, 1e-12);
+  EXPECT_LT(node_err / node_scale, 1e-12);
+}
+
 }  // namespace
 }  // namespace geodem::test
