@@ -245,7 +245,7 @@ std::size_t add_clump(World<D>& world, const ResolvedClump<D>& t, const typename
   else
     C.inv_inertia.push_back(inertia.cwiseInverse());
   C.volume.push_back(t.volume * std::pow(scale, D));
-  C.id.push_back(static_cast<std::uint32_t>(c));
+  C.id.push_back(C.next_id++);
   if (!C.held.empty()) C.held.push_back(0);
   for (std::size_t m = 0; m < t.offset.size(); ++m) {
     const Vec off = scale * t.offset[m];

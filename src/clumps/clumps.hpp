@@ -43,6 +43,7 @@ struct Clumps {
   std::vector<double> volume;    // of the union of the members (overlaps once)
   // Stable identifier (creation order): clumps are renumbered with their members.
   std::vector<std::uint32_t> id;
+  std::uint32_t next_id = 0;  // unique even after clumps were removed
   // Held in place (not integrated) while non-zero; empty when no clump is held.
   std::vector<std::uint8_t> held;
 

@@ -91,6 +91,15 @@ void check_finite(const World<D>& world) {
           std::to_string(world.dt) +
           " s): use time.step = \"auto\" or lower it, or lower the stiffness");
   }
+  const auto& S = world.spars;
+  for (std::size_t i = 0; i < S.nodes(); ++i)
+    if (!S.pos[i].allFinite() || !S.vel[i].allFinite())
+      throw InstabilityError("non-finite state at step " + std::to_string(world.step) +
+                             " on node " + std::to_string(i) +
+                             " of the spar chains; likely cause: time step too large for the "
+                             "chain's stiffness J or bending stiffness (dt = " +
+                             std::to_string(world.dt) +
+                             " s): use time.step = \"auto\", or raise the nodes' mass");
 }
 
 template <int D>

@@ -54,6 +54,8 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
   g.shape = a->choice("shape", "runout", {"runout", "L", "V"});
   g.runout_length = a->positive("runout_length", g.runout_length);
   g.cover = a->positive("cover", g.cover);
+  if (g.cover < 2.0 * s.radius)
+    a->fail("cover", "expected at least one grain diameter (2 x soil.radius) of cover");
   g.free_length = a->positive("free_length", 4.0 * s.radius);
   g.front = a->choice("front", "wall", {"wall", "free"});
   if (g.shape != "runout") {

@@ -87,8 +87,7 @@ struct Pullout {
       law->bond_tension = law->bond_shear = 0.0;
     }
     w.update_contact_extras();
-    if (s.deposit_friction_deg >= 0.0)
-      set_soil_friction(std::tan(s.deposit_friction_deg * kDeg) / s.soil.friction);
+    if (s.deposit_friction_deg >= 0.0) set_soil_friction(std::tan(s.deposit_friction_deg * kDeg));
     w.gravity = Vec(0.0, -kGravity);
     w.auto_dt = true;
     w.dt_safety = s.dt_safety;
@@ -110,11 +109,12 @@ struct Pullout {
                   {"stage", "step", "time", "grains", "surface", "unbalanced", "kinetic_energy"});
   }
 
-  // Scales the soil's contact friction (and its rolling friction with it) from the
-  // material's values; 1 restores them.
-  void set_soil_friction(double ratio) {
+  // Sets the soil's contact friction; its rolling friction follows in proportion (none
+  // while the friction is 0).
+  void set_soil_friction(double mu) {
     PairLaw& law = w.pair_laws[kSoil * 3 + kSoil];
-    law.mu = s.soil.friction * ratio;
+    const double ratio = s.soil.friction > 0.0 ? mu / s.soil.friction : 0.0;
+    law.mu = mu;
     law.roll_mu = s.soil.rolling_friction * ratio;
     law.twist_mu = s.soil.twisting_friction * ratio;
   }
@@ -246,7 +246,7 @@ struct Pullout {
       w.rebuild_needed = true;
     }
     if (s.surcharge > 0.0) add_surcharge_plate(top);
-    set_soil_friction(1.0);  // the soil's own friction from here on
+    set_soil_friction(s.soil.friction);  // the soil's own friction from here on
     settle("consolidation", 3);
     if (s.anchor.front == "free") {
       // Grains that fell off the free face are no longer part of the anchorage.
@@ -423,7 +423,8 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
     displacement = clamp0.x() - S.pos[0].x();
     tension_sum += S.tension[0];
     ++tension_steps;
-    if (w.measure_this_step) {
+    // The last row is always written, even when a change of dt made the prediction miss it.
+    if (w.measure_this_step || displacement >= s.max_displacement) {
       // The tension of a row is its mean over the steps since the previous row: the
       // per-step value carries the sheet's own vibrations.
       const double T = tension_sum / static_cast<double>(tension_steps);
@@ -463,9 +464,13 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
   results["soil_displacement_at_T_max"] = soil_at_max;
   results["soil_displacement_ratio"] = soil_displacement() / s.max_displacement;
   results["anchoring_zone_grains"] = zone_count;
-  results["analytic"] = {{"unit_weight", unit_weight},    {"sigma_v0", est.sigma_v0},
-                         {"surcharge_measured", sigma_q}, {"K", est.K},
-                         {"runout_friction", est.runout}, {"trench_friction", est.trench},
+  results["analytic"] = {{"unit_weight", unit_weight},
+                         {"sigma_v0", est.sigma_v0},
+                         {"surcharge_measured", sigma_q},
+                         {"runout_load", runout_load},
+                         {"K", est.K},
+                         {"runout_friction", est.runout},
+                         {"trench_friction", est.trench},
                          {"capstan_factor", est.capstan}};
   results["sheet"] = {
       {"nodes", S.nodes()}, {"elements", S.elements()}, {"node_mass_factor", run.node_mass_factor}};

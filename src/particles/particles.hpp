@@ -37,6 +37,7 @@ struct Particles {
   // Orientations: empty unless tracked (World::track_orientation), then one per grain.
   std::vector<Orient> orient;
   std::vector<std::uint32_t> id;  // stable user-facing identifier
+  std::uint32_t next_id = 0;      // unique even after grains were removed
   // Clump membership: empty while the world has no clump, then one entry per grain:
   // the clump index (kNoClump for a free grain) and the centre in the clump's body frame.
   std::vector<std::uint32_t> clump;
@@ -67,7 +68,7 @@ struct Particles {
     flags.push_back(fixed ? kFixed : 0);
     pos_at_build.push_back(x);
     if (!orient.empty()) orient.push_back(Dim<D>::identity());
-    id.push_back(static_cast<std::uint32_t>(id.size()));
+    id.push_back(next_id++);
     if (!clump.empty()) {
       clump.push_back(0xffffffffu);
       body_offset.push_back(Vec::Zero());

@@ -197,10 +197,23 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     if (c.bending > 0.0 && s.dimension != 2)
       t.fail("bending_stiffness", "bending stiffness of chains is available in 2D only");
     for (double h : t.numbers("held", {}, 0)) {
-      if (h != std::floor(h)) t.fail("held", "expected node indices (integers)");
+      if (h != std::floor(h) || std::abs(h) > 1e9)
+        t.fail("held", "expected node indices (integers)");
       c.held.push_back(static_cast<long long>(h));
     }
+    if (t.has("velocity") && c.held.empty())
+      t.fail("velocity", "a velocity is for held nodes: list them in 'held'");
     c.velocity = vec(t, "velocity", zero);
+    if (c.element_length > 0.0) {
+      double nodes = 1.0;
+      for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
+        double d2 = 0.0;
+        for (std::size_t j = 0; j < D; ++j)
+          d2 += (c.points[k + 1][j] - c.points[k][j]) * (c.points[k + 1][j] - c.points[k][j]);
+        nodes += std::ceil(std::sqrt(d2) / c.element_length);
+      }
+      if (nodes > 1e7) t.fail("element_length", "more than 10 million nodes: too short");
+    }
     s.chains.push_back(c);
     t.finish();
   }

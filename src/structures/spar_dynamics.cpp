@@ -90,16 +90,19 @@ double spar_min_mass_over_stiffness(const World<D>& world) {
     k[S.node_b[e]] += ke;
   }
   if constexpr (D == 2) {
-    // A bending spring k_b acts on a node through the lever 1/L of each element.
+    // A bending spring's stiffness is k_b g g^T with g = (1/l1, -(1/l1 + 1/l2), 1/l2) on
+    // its three nodes (transverse). Its diagonal alone underestimates the largest
+    // eigenvalue of a chain of springs (16 k_b/l^2 for equal elements against a diagonal of
+    // 6 k_b/l^2); each node takes its Gershgorin row sum k_b |g_i| sum_j |g_j| instead.
     for (const auto& c : S.chains) {
       if (c.bending == 0.0) continue;
       for (std::uint32_t j = 0; j + 2 < c.node_count; ++j) {
         const std::size_t e = c.first_element + j;
-        const double l1 = S.rest_length[e], l2 = S.rest_length[e + 1];
-        const double kb = c.bending * (1.0 / l1 + 1.0 / l2) * (1.0 / l1 + 1.0 / l2);
-        k[S.node_a[e]] += Vec::Constant(c.bending / (l1 * l1));
-        k[S.node_b[e]] += Vec::Constant(kb);
-        k[S.node_b[e + 1]] += Vec::Constant(c.bending / (l2 * l2));
+        const double g1 = 1.0 / S.rest_length[e], g2 = 1.0 / S.rest_length[e + 1];
+        const double sum = 2.0 * (g1 + g2);
+        k[S.node_a[e]] += Vec::Constant(c.bending * g1 * sum);
+        k[S.node_b[e]] += Vec::Constant(c.bending * (g1 + g2) * sum);
+        k[S.node_b[e + 1]] += Vec::Constant(c.bending * g2 * sum);
       }
     }
   }
@@ -115,10 +118,10 @@ double spar_min_mass_over_stiffness(const World<D>& world) {
         const double gap = (p.closest - P.pos[i]).norm() - P.radius[i] - S.half_thickness[e];
         if (gap >= 0.0 || p.region != SparRegion::kOwned) continue;
         const PairLaw& law = world.pair_law(P.material[i], S.material[e]);
-        const double kn =
-            law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i]) : 0.0;
-        const double kt = law.linear_kt(kn);
-        const Vec ks = Vec::Constant(std::max(kn, kt));
+        const double r = P.radius[i], delta = -gap;
+        const NormalResult nr = normal_force(law, r, wall_partner_radius(law, r), 0.0, delta, 0.0);
+        const double kn = law.law == LawKind::kLinear ? law.linear_kn(r, r) : 1.5 * nr.fn / delta;
+        const Vec ks = Vec::Constant(std::max(kn, nr.kt));
         k[S.node_a[e]] += ks;
         k[S.node_b[e]] += ks;
       }

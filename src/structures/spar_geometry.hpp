@@ -34,7 +34,8 @@ template <int D>
 inline double spar_parameter(const SparChains<D>& S, std::size_t e, const typename Dim<D>::Vec& x) {
   const auto& a = S.pos[S.node_a[e]];
   const typename Dim<D>::Vec seg = S.pos[S.node_b[e]] - a;
-  return (x - a).dot(seg) / seg.squaredNorm();
+  const double len2 = seg.squaredNorm();
+  return len2 > 0.0 ? (x - a).dot(seg) / len2 : 0.0;  // a folded element is a point
 }
 
 template <int D>

@@ -319,6 +319,8 @@ create = "initial"
         self.assertIn("chain_cable_tension_first", header)
         self.assertIn("spars_000000.vtp", (out / "vtk" / "particles.pvd").read_text())
         self.assertBadInput(text.replace("held = [0, -1]", "held = [0, 99]"), "held", "99")
+        self.assertBadInput(text.replace("held = [0, -1]", "velocity = [0.1, 0]"), "velocity",
+                            "held")
         self.assertBadInput(text.replace('material = "sheet"', 'material = "steel"'),
                             "chains.0.material", "steel")
 
@@ -328,6 +330,8 @@ create = "initial"
         self.assertBadInput(SMALL_PULLOUT.format(shape="U", trench=""), "anchor.shape", "runout")
         text = SMALL_PULLOUT.format(shape="L", trench="trench_depth = 0.05\ntrench_width = 0.5")
         self.assertBadInput(text, "trench_width", "inside the box")
+        self.assertBadInput(SMALL_PULLOUT.format(shape="runout", trench="").replace(
+            "cover = 0.1", "cover = 0.01"), "anchor.cover", "grain diameter")
 
     def test_plot_command(self):
         out = self.dir / "out"
