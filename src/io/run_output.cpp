@@ -30,6 +30,20 @@ void write_summary(const std::string& dir, const nlohmann::json& summary) {
   write_file_atomic(dir + "/summary.json", summary.dump(2) + "\n");
 }
 
+nlohmann::json write_run_summary(const std::string& dir, const std::string& kind,
+                                 const std::string& status, const nlohmann::json& scenario,
+                                 const nlohmann::json& results, const nlohmann::json& timing) {
+  nlohmann::json summary;
+  summary["kind"] = kind;
+  summary["geodem_version"] = version();
+  summary["status"] = status;
+  summary["scenario"] = scenario;
+  summary["results"] = results;
+  summary["timing"] = timing;
+  write_summary(dir, summary);
+  return summary;
+}
+
 template <int D>
 nlohmann::json timing_json(const World<D>& world, double wall_s, std::uint64_t steps, int threads) {
   nlohmann::json t;

@@ -22,6 +22,11 @@ void prepare_output_dir(const std::string& dir);
 // summary.json: {"kind", "geodem_version", "status", "scenario", "results", "timing"}.
 void write_summary(const std::string& dir, const nlohmann::json& summary);
 
+// Assembles summary.json from its parts, writes it and returns it.
+nlohmann::json write_run_summary(const std::string& dir, const std::string& kind,
+                                 const std::string& status, const nlohmann::json& scenario,
+                                 const nlohmann::json& results, const nlohmann::json& timing);
+
 // Timing block of summary.json from a world's counters.
 template <int D>
 nlohmann::json timing_json(const World<D>& world, double wall_s, std::uint64_t steps, int threads);

@@ -478,16 +478,9 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
   results["dt"] = w.dt;
   results["grains"] = P.size();
 
-  nlohmann::json summary;
-  summary["kind"] = "pullout";
-  summary["geodem_version"] = version();
-  summary["status"] = "completed";
-  summary["scenario"] = s.resolved;
-  summary["results"] = results;
   const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  summary["timing"] = timing_json(w, wall_s, run.total_steps, opt.threads);
-  write_summary(opt.out_dir, summary);
-  return summary;
+  return write_run_summary(opt.out_dir, "pullout", "completed", s.resolved, results,
+                           timing_json(w, wall_s, run.total_steps, opt.threads));
 }
 
 }  // namespace geodem

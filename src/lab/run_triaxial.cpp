@@ -307,15 +307,10 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     const MohrCoulomb mc = fit_mohr_coulomb(s1_peaks, s3_peaks);
     results["mohr_coulomb"] = {{"cohesion", mc.cohesion}, {"phi_deg", mc.phi_deg}};
   }
-  nlohmann::json summary;
-  summary["kind"] = "triaxial";
-  summary["geodem_version"] = version();
-  summary["status"] = "completed";
-  summary["scenario"] = s.resolved;
-  summary["results"] = results;
   const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  summary["timing"] = timing_json(lab.w, wall_s, lab.total_steps, opt.threads);
-  write_summary(opt.out_dir, summary);
+  const nlohmann::json summary =
+      write_run_summary(opt.out_dir, "triaxial", "completed", s.resolved, results,
+                        timing_json(lab.w, wall_s, lab.total_steps, opt.threads));
   return summary;
 }
 

@@ -201,14 +201,9 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     results["chains"] = chains;
   }
 
-  nlohmann::json summary;
-  summary["kind"] = "scene";
-  summary["geodem_version"] = version();
-  summary["status"] = status;
-  summary["scenario"] = s.resolved;
-  summary["results"] = results;
-  summary["timing"] = timing_json(w, wall_s, w.step, opt.threads);
-  write_summary(opt.out_dir, summary);
+  const nlohmann::json summary =
+      write_run_summary(opt.out_dir, "scene", status, s.resolved, results,
+                        timing_json(w, wall_s, w.step, opt.threads));
   if (status == "unstable") throw InstabilityError(message);
   return summary;
 }
