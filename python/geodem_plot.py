@@ -32,6 +32,14 @@ def read_history(path):
     return cols
 
 
+def save(fig, out, name, made):
+    """Writes one figure as out/name (PNG, 120 dpi), closes it and notes its name."""
+    fig.tight_layout()
+    fig.savefig(out / name, dpi=120)
+    plt.close(fig)
+    made.append(name)
+
+
 def positive(values):
     return [v if (v > 0 and math.isfinite(v)) else float("nan") for v in values]
 
@@ -47,10 +55,7 @@ def plot_scene(out, summary, h):
     ax2.semilogy(t, positive(h["unbalanced"]), color="tab:red", label="unbalanced force ratio")
     ax2.set_ylabel("unbalanced force ratio", color="tab:red")
     ax.set_title("Energy and equilibrium")
-    fig.tight_layout()
-    fig.savefig(out / "energy.png", dpi=120)
-    plt.close(fig)
-    made.append("energy.png")
+    save(fig, out, "energy.png", made)
 
     walls = summary.get("scenario", {}).get("walls", [])
     dim = summary.get("scenario", {}).get("dimension", 3)
@@ -76,10 +81,7 @@ def plot_scene(out, summary, h):
         ax.set_ylabel("normal force on wall (N)" if dim == 3 else "normal force on wall (N/m)")
         ax.legend(fontsize=8)
         ax.set_title("Wall forces")
-        fig.tight_layout()
-        fig.savefig(out / "wall_forces.png", dpi=120)
-        plt.close(fig)
-        made.append("wall_forces.png")
+        save(fig, out, "wall_forces.png", made)
     return made
 
 
@@ -107,10 +109,8 @@ def plot_triaxial(out, summary, h):
     ax2.grid(alpha=0.3)
     dim = summary.get("scenario", {}).get("dimension", 3)
     fig.suptitle(("Triaxial" if dim == 3 else "Biaxial") + " compression")
-    fig.tight_layout()
-    fig.savefig(out / "stress_strain.png", dpi=120)
-    plt.close(fig)
-    made = ["stress_strain.png"]
+    made = []
+    save(fig, out, "stress_strain.png", made)
     mc = results.get("mohr_coulomb")
     if mc and tests:
         fig, ax = plt.subplots(figsize=(6.4, 4.2))
@@ -133,10 +133,7 @@ def plot_triaxial(out, summary, h):
         ax.set_ylim(bottom=0)
         ax.legend(fontsize=8)
         ax.set_title("Mohr circles at the peaks")
-        fig.tight_layout()
-        fig.savefig(out / "mohr_coulomb.png", dpi=120)
-        plt.close(fig)
-        made.append("mohr_coulomb.png")
+        save(fig, out, "mohr_coulomb.png", made)
     return made
 
 
@@ -196,10 +193,7 @@ def plot_pullout(out, summary, h):
             handles, labels = handles + h2, labels + l2
         ax.legend(handles, labels, fontsize=8, loc="lower right")
         ax.set_title("Pull-out test")
-        fig.tight_layout()
-        fig.savefig(out / "pullout.png", dpi=120)
-        plt.close(fig)
-        made.append("pullout.png")
+        save(fig, out, "pullout.png", made)
 
     profiles = read_state(out / "tension_profiles.csv")
     if profiles and profiles.get("s"):
@@ -220,10 +214,7 @@ def plot_pullout(out, summary, h):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         ax.set_title("Tension along the sheet")
-        fig.tight_layout()
-        fig.savefig(out / "tension_profiles.png", dpi=120)
-        plt.close(fig)
-        made.append("tension_profiles.png")
+        save(fig, out, "tension_profiles.png", made)
 
     states = {}
     for name in ("initial", "final"):
@@ -279,10 +270,7 @@ def plot_pullout(out, summary, h):
             else:
                 title = "Pull-out: final state"
             ax.set_title(title)
-            fig.tight_layout()
-            fig.savefig(out / f"pullout_{name}.png", dpi=120)
-            plt.close(fig)
-            made.append(f"pullout_{name}.png")
+            save(fig, out, f"pullout_{name}.png", made)
     return made
 
 
