@@ -3,6 +3,7 @@
 #include <malloc.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -10,12 +11,15 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "io/material_file.hpp"
 #include "io/run_output.hpp"
 #include "io/toml_reader.hpp"
 #include "lab/run_pullout.hpp"
 #include "lab/run_triaxial.hpp"
 #include "scene/build_scene.hpp"
 #include "scene/run_scene.hpp"
+#include "study/run_studies.hpp"
+#include "study/study_comm.hpp"
 
 namespace {
 
@@ -35,16 +39,75 @@ Loaded load(const std::string& file, const std::vector<std::string>& overrides) 
     throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
                              "expected a string");
   l.kind = *kind->value<std::string>();
-  if (l.kind != "scene" && l.kind != "triaxial" && l.kind != "pullout")
+  static const std::vector<std::string> kinds = {"scene",  "triaxial",   "pullout",
+                                                 "series", "rate_study", "calibrate"};
+  if (std::find(kinds.begin(), kinds.end(), l.kind) == kinds.end()) {
+    std::string known;
+    for (const auto& k : kinds) known += (known.empty() ? "\"" : ", \"") + k + "\"";
     throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
-                             "unknown or unavailable kind \"" + l.kind +
-                                 "\"; this version runs: \"scene\", \"triaxial\", \"pullout\"");
+                             "unknown kind \"" + l.kind + "\"; expected one of " + known);
+  }
+  geodem::expand_material_reference(l.root, l.kind, file);
   return l;
+}
+
+int run_main(int argc, char** argv);
+
+// Studies: their runs go to `--threads` workers on each MPI rank; rank 0 reports.
+int run_study(const Loaded& l, const std::string& file, bool check_only,
+              const geodem::RunOptions& opt) {
+  nlohmann::json summary;
+  bool plots = true;
+  if (l.kind == "series") {
+    const auto s = geodem::read_series(l.root, file);
+    if (check_only) return std::printf("%s: ok (kind = \"series\")\n", file.c_str()), kOk;
+    summary = geodem::run_series(s, opt);
+    plots = s.study.plots;
+  } else if (l.kind == "rate_study") {
+    const auto s = geodem::read_rate_study(l.root, file);
+    if (check_only) return std::printf("%s: ok (kind = \"rate_study\")\n", file.c_str()), kOk;
+    summary = geodem::run_rate_study(s, opt);
+    plots = s.study.plots;
+  } else {
+    const auto s = geodem::read_calibrate(l.root, file);
+    if (check_only) return std::printf("%s: ok (kind = \"calibrate\")\n", file.c_str()), kOk;
+    summary = geodem::run_calibrate(s, opt);
+    plots = s.study.plots;
+  }
+  if (geodem::comm::rank() != 0) return kOk;
+  if (plots) geodem::make_plots(opt.out_dir, opt.quiet);
+  const auto& failed = summary["results"]["failed_runs"];
+  if (!failed.empty()) {
+    std::fprintf(stderr, "warning: %zu run(s) did not complete (results.failed_runs):\n",
+                 failed.size());
+    bool unstable = false;
+    for (const auto& f : failed) {
+      std::fprintf(stderr, "  %s: %s\n", f["id"].get<std::string>().c_str(),
+                   f["error"].get<std::string>().c_str());
+      unstable = unstable || f["status"] == "unstable";
+    }
+    return unstable ? kUnstable : kFailure;
+  }
+  if (!opt.quiet) std::fprintf(stderr, "done: outputs in %s\n", opt.out_dir.c_str());
+  return kOk;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  try {
+    geodem::comm::init(&argc, &argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kBadInput;
+  }
+  const int rc = run_main(argc, argv);
+  geodem::comm::finalize();
+  return rc;
+}
+
+namespace {
+int run_main(int argc, char** argv) {
   // Grain and contact arrays are large and are reallocated when the neighbour list grows or
   // the grains are renumbered. A fixed mmap threshold gives each such block pages of its
   // own that go back to the system when it is freed; glibc's adaptive threshold would
@@ -64,7 +127,8 @@ int main(int argc, char** argv) {
   run->add_option("scenario", scenario, "scenario file (TOML)")->required();
   run->add_option("--out", out_dir, "output folder")->capture_default_str();
   run->add_option("--set", overrides, "override a scenario key: --set sample.count=2000");
-  run->add_option("--threads", threads, "worker threads")->check(CLI::Range(1, 1024));
+  run->add_option("--threads", threads,
+                  "worker threads (studies: runs side by side on each MPI rank)")->check(CLI::Range(1, 1024));
   run->add_flag("--quiet", quiet, "no progress display");
 
   auto* check = app.add_subcommand("check", "validate a scenario without running it");
@@ -95,6 +159,12 @@ int main(int argc, char** argv) {
     opt.out_dir = out_dir;
     opt.quiet = quiet;
     opt.threads = threads;
+    if (l.kind == "series" || l.kind == "rate_study" || l.kind == "calibrate")
+      return run_study(l, scenario, check->parsed(), opt);
+    if (geodem::comm::size() > 1)
+      throw geodem::InputError(scenario, 0, "kind",
+                               "only studies (series, rate_study, calibrate) share their runs "
+                               "across MPI ranks; run this scenario without mpirun");
     if (l.kind == "triaxial") {
       const geodem::TriaxialSettings t = geodem::read_triaxial(l.root, scenario);
       if (*check) {
@@ -154,3 +224,4 @@ int main(int argc, char** argv) {
     return kFailure;
   }
 }
+}  // namespace

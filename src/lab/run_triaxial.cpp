@@ -28,6 +28,12 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
+// Diameter of the disc (2D) or sphere (3D) of volume v: the grain size d0 of a sample.
+template <int D>
+double equivalent_diameter(double v) {
+  return D == 2 ? 2.0 * std::sqrt(v / std::numbers::pi) : std::cbrt(6.0 * v / std::numbers::pi);
+}
+
 template <int D>
 struct Lab {
   using Vec = typename Dim<D>::Vec;
@@ -218,6 +224,8 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     if (s.bonds_create == "before_shear") bonds_made = create_bonds(w, s.bond_gap_tolerance);
     const std::uint64_t broken0 = w.broken_bonds;
     const double porosity0 = lab.porosity();
+    const double height0 = lab.box.size(w)[axial];
+    const double d0 = equivalent_diameter<D>(solid_volume(w) / static_cast<double>(body_count(w)));
     // Compression: axial wall strain-controlled, lateral walls servo-controlled.
     w.controllers.clear();
     for (int k = 0; k < D - 1; ++k) w.controllers.push_back(servos[static_cast<std::size_t>(k)]);
@@ -283,6 +291,17 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     r["young_modulus"] = sp.young_modulus;
     r["poisson_ratio"] = sp.poisson_ratio;
     r["dilatancy_deg"] = sp.dilatancy_deg;
+    // Peak principal stresses, for envelopes pooled over several runs (studies).
+    std::size_t ip = 0;
+    for (std::size_t i = 0; i < curve.sigma1.size(); ++i)
+      if (curve.sigma1[i] - curve.sigma3[i] > curve.sigma1[ip] - curve.sigma3[ip]) ip = i;
+    r["sigma1_peak"] = curve.sigma1[ip];
+    r["sigma3_peak"] = curve.sigma3[ip];
+    // Size and rate measures of the representativeness and rate studies.
+    r["grain_size_d0"] = d0;
+    r["sample_height"] = height0;
+    r["d0_over_L"] = d0 / height0;
+    r["inertial_number"] = s.strain_rate * d0 * std::sqrt(s.grain.density / sigma3);
     r["steps"] = w.step;
     if (bonds) {
       r["bonds_at_start"] = s.bonds_create == "before_shear"
@@ -292,10 +311,6 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     }
     r["grains"] = body_count(w);
     tests.push_back(r);
-    // Peak principal stresses for the envelope.
-    std::size_t ip = 0;
-    for (std::size_t i = 0; i < curve.sigma1.size(); ++i)
-      if (curve.sigma1[i] - curve.sigma3[i] > curve.sigma1[ip] - curve.sigma3[ip]) ip = i;
     s1_peaks.push_back(curve.sigma1[ip]);
     s3_peaks.push_back(curve.sigma3[ip]);
   }

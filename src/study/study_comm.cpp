@@ -1,0 +1,77 @@
+#include "study/study_comm.hpp"
+
+#include <cstdlib>
+#include <stdexcept>
+
+#ifdef GEODEM_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace geodem::comm {
+
+namespace {
+bool g_active = false;
+int g_rank = 0, g_size = 1;
+
+// Ranks in the world of an MPI launcher (Open MPI, MPICH/Hydra), or 1.
+int launcher_size() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* s = std::getenv(v)) return std::atoi(s);
+  return 1;
+}
+}  // namespace
+
+void init(int* argc, char*** argv) {
+  if (launcher_size() <= 1) return;
+#ifdef GEODEM_HAVE_MPI
+  int provided = 0;
+  // Only the main thread calls MPI; the run workers are threads of their own.
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+  MPI_Comm_rank(MPI_COMM_WORLD, &g_rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &g_size);
+  g_active = true;
+#else
+  (void)argc;
+  (void)argv;
+  throw std::runtime_error(
+      "launched by an MPI launcher, but this geodem was built without MPI (install "
+      "libopenmpi-dev and rebuild); run it without mpirun");
+#endif
+}
+
+void finalize() {
+#ifdef GEODEM_HAVE_MPI
+  if (g_active) MPI_Finalize();
+#endif
+  g_active = false;
+}
+
+bool active() { return g_active; }
+int rank() { return g_rank; }
+int size() { return g_size; }
+
+std::vector<std::string> all_gather(const std::string& mine) {
+  if (!g_active) return {mine};
+#ifdef GEODEM_HAVE_MPI
+  int len = static_cast<int>(mine.size());
+  std::vector<int> lens(static_cast<std::size_t>(g_size)), offsets(lens.size());
+  MPI_Allgather(&len, 1, MPI_INT, lens.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  int total = 0;
+  for (std::size_t r = 0; r < lens.size(); ++r) {
+    offsets[r] = total;
+    total += lens[r];
+  }
+  std::string all(static_cast<std::size_t>(total), '\0');
+  MPI_Allgatherv(mine.data(), len, MPI_CHAR, all.data(), lens.data(), offsets.data(), MPI_CHAR,
+                 MPI_COMM_WORLD);
+  std::vector<std::string> parts;
+  for (std::size_t r = 0; r < lens.size(); ++r)
+    parts.push_back(all.substr(static_cast<std::size_t>(offsets[r]),
+                               static_cast<std::size_t>(lens[r])));
+  return parts;
+#else
+  return {mine};
+#endif
+}
+
+}  // namespace geodem::comm

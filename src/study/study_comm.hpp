@@ -1,0 +1,22 @@
+// The message passing of a study shared across machines: `mpirun -n K geodem run
+// study.toml` gives each rank a share of the runs, and the ranks exchange their results
+// so that every rank (and the rank-0 report) sees all of them. MPI starts only when the
+// process was launched by an MPI launcher; a plain `geodem run` never touches it, and
+// builds without MPI refuse to run under one.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace geodem::comm {
+
+// Starts MPI when launched by mpirun/mpiexec (their environment variables say so).
+void init(int* argc, char*** argv);
+void finalize();
+bool active();
+int rank();  // 0 without MPI
+int size();  // 1 without MPI
+// Every rank passes its part; every rank receives all parts, in rank order.
+std::vector<std::string> all_gather(const std::string& mine);
+
+}  // namespace geodem::comm
