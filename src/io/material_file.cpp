@@ -7,6 +7,7 @@
 #include "core/text.hpp"
 #include "io/output_files.hpp"
 #include "io/toml_reader.hpp"
+#include "scene/scene_settings.hpp"
 
 #ifndef GEODEM_PRESET_DIR
 #define GEODEM_PRESET_DIR "presets"
@@ -97,6 +98,13 @@ void expand_material_reference(toml::table& root, const std::string& kind,
                      cat("material ", f, " is for dimension ", dim, ", the scenario is ", want, "D"));
   const toml::table* m = file["material"].as_table();
   if (!m) throw InputError(f, 0, "material", "missing [material] table");
+  {
+    // Checked here, where errors can name the material file and its lines: copies of
+    // TOML nodes lose their source position.
+    TableReader r(*m, "material", f, nullptr);
+    read_material(r, "check");
+    r.finish();
+  }
   for (const auto& [k, v] : *m) {
     // A friction coefficient in the scenario overrides the file's angle.
     if (k.str() == "friction_deg" && mat->contains("friction")) continue;

@@ -138,9 +138,6 @@ void TableReader::fail(const std::string& key, const std::string& what) const {
   const toml::node* n = table_->get(key);
   std::string file = file_;
   if (n && n->source().path && *n->source().path == "--set") file = file_ + " (--set)";
-  // A key merged from a material file (io/material_file.hpp) names that file.
-  else if (n && n->source().path && !n->source().path->empty() && *n->source().path != file_)
-    file = *n->source().path + " (material file of " + file_ + ")";
   throw InputError(file, line_of(key), dotted(key), what);
 }
 

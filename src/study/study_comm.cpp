@@ -47,6 +47,14 @@ void finalize() {
 }
 
 bool active() { return g_active; }
+
+bool built_with_mpi() {
+#ifdef GEODEM_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
 int rank() { return g_rank; }
 int size() { return g_size; }
 

@@ -14,6 +14,7 @@ namespace geodem::comm {
 void init(int* argc, char*** argv);
 void finalize();
 bool active();
+bool built_with_mpi();
 int rank();  // 0 without MPI
 int size();  // 1 without MPI
 // Every rank passes its part; every rank receives all parts, in rank order.
