@@ -4,7 +4,8 @@
 set -euo pipefail
 packages=(g++ cmake ninja-build libeigen3-dev libtomlplusplus-dev libcli11-dev
           nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
-          python3 python3-numpy python3-matplotlib clang-format)
+          python3 python3-numpy python3-matplotlib clang-format
+          libopenmpi-dev openmpi-bin)
 if [[ "${1:-}" == "--with-peers" ]]; then packages+=(liggghts yade); fi
 missing=()
 for p in "${packages[@]}"; do

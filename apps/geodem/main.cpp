@@ -129,7 +129,8 @@ int run_main(int argc, char** argv) {
   run->add_option("--out", out_dir, "output folder")->capture_default_str();
   run->add_option("--set", overrides, "override a scenario key: --set sample.count=2000");
   run->add_option("--threads", threads,
-                  "worker threads (studies: runs side by side on each MPI rank)")->check(CLI::Range(1, 1024));
+                  "worker threads (studies: runs side by side on each MPI rank)")
+      ->check(CLI::Range(1, 1024));
   run->add_flag("--quiet", quiet, "no progress display");
 
   auto* check = app.add_subcommand("check", "validate a scenario without running it");

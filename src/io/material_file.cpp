@@ -27,7 +27,8 @@ void write_material_file(const std::string& path, const MaterialFile& m) {
   if (!m.source.empty()) t << ", calibrated by " << m.source;
   t << "\n# Use it in a scenario: [material] file = \"<this file>\" (or [soil] in a pull-out).\n"
     << "name = \"" << m.name << "\"\ndimension = " << m.dimension << "\n\n[material]\n";
-  for (const auto& [k, v] : m.material.items()) t << k << " = " << format_number(v.get<double>()) << "\n";
+  for (const auto& [k, v] : m.material.items())
+    t << k << " = " << format_number(v.get<double>()) << "\n";
   t << "\n[grain]\n";
   if (!m.grain.empty()) t << "shape = \"" << m.grain << "\"\n";
   t << "radius_fuzz = " << format_number(m.radius_fuzz) << "\n"
@@ -61,7 +62,9 @@ void expand_material_reference(toml::table& root, const std::string& kind,
   toml::table* mat = root[table_name].as_table();
   if (!mat || !(mat->contains("preset") || mat->contains("file"))) return;
   const std::string where = cat(table_name, ".");
-  auto line = [&](const char* key) { return static_cast<int>((*mat)[key].node()->source().begin.line); };
+  auto line = [&](const char* key) {
+    return static_cast<int>((*mat)[key].node()->source().begin.line);
+  };
   if (mat->contains("preset") && mat->contains("file"))
     throw InputError(scenario_file, line("file"), cat(where, "file"),
                      "give either 'preset' or 'file', not both");
@@ -94,8 +97,9 @@ void expand_material_reference(toml::table& root, const std::string& kind,
   const long long dim = file["dimension"].value_or(0LL);
   const long long want = kind == "pullout" ? 2 : root["dimension"].value_or(3LL);
   if (dim != want)
-    throw InputError(scenario_file, ref_line, cat(where, key),
-                     cat("material ", f, " is for dimension ", dim, ", the scenario is ", want, "D"));
+    throw InputError(
+        scenario_file, ref_line, cat(where, key),
+        cat("material ", f, " is for dimension ", dim, ", the scenario is ", want, "D"));
   const toml::table* m = file["material"].as_table();
   if (!m) throw InputError(f, 0, "material", "missing [material] table");
   {
@@ -120,7 +124,8 @@ void expand_material_reference(toml::table& root, const std::string& kind,
   }
   if (kind != "pullout") {
     if (const toml::node* porosity = grain->get("porosity"))
-      if (toml::table* c = root["compaction"].as_table()) give_default(*c, "target_porosity", *porosity);
+      if (toml::table* c = root["compaction"].as_table())
+        give_default(*c, "target_porosity", *porosity);
   }
 }
 

@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/random.hpp"
 #include "core/step.hpp"
+#include "core/text.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "lab/lab_box.hpp"
@@ -217,9 +218,25 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
         if (std::abs(lab.box.stress(w, k) - sigma3) > s.stress_tolerance * sigma3) return false;
       return unb < s.unbalanced_tolerance;
     };
-    if (!lab.run_until("consolidation", s.max_compaction_steps, 200, consolidated))
-      throw std::runtime_error("the sample did not consolidate to " + format_number(sigma3) +
-                               " Pa");
+    // A sample whose stresses are on target but whose unbalanced force stays just above
+    // the tolerance (servo and damping jiggle) goes on after consolidation_max_steps, with
+    // a warning in its results; one whose stresses are off keeps trying, up to max_steps.
+    std::string consolidation_warning;
+    if (!lab.run_until("consolidation", s.consolidation_max_steps, 200, consolidated)) {
+      bool on_target = true;
+      for (int k = 0; k < D; ++k)
+        on_target =
+            on_target && std::abs(lab.box.stress(w, k) - sigma3) <= s.stress_tolerance * sigma3;
+      if (on_target) {
+        consolidation_warning =
+            cat("unbalanced force ratio ", format_number(unbalanced_force_ratio(w)),
+                " above the tolerance after ", s.consolidation_max_steps,
+                " consolidation steps; the test went on");
+      } else if (!lab.run_until("consolidation", s.max_compaction_steps, 200, consolidated)) {
+        throw std::runtime_error("the sample did not consolidate to " + format_number(sigma3) +
+                                 " Pa");
+      }
+    }
     std::size_t bonds_made = 0;
     if (s.bonds_create == "before_shear") bonds_made = create_bonds(w, s.bond_gap_tolerance);
     const std::uint64_t broken0 = w.broken_bonds;
@@ -310,6 +327,7 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
       r["bonds_broken"] = w.broken_bonds - broken0;
     }
     r["grains"] = body_count(w);
+    if (!consolidation_warning.empty()) r["warning"] = consolidation_warning;
     tests.push_back(r);
     s1_peaks.push_back(curve.sigma1[ip]);
     s3_peaks.push_back(curve.sigma3[ip]);

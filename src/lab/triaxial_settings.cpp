@@ -106,6 +106,8 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
     if (!(v > 0.0)) sh->fail("confining_stress", "confining stresses must be positive (Pa)");
   s.shear_damping = sh->in_range("damping", 0.1, 0.0, 0.99);
   s.servo_gain = sh->in_range("servo_gain", 0.5, 1e-3, 1.0);
+  s.consolidation_max_steps =
+      static_cast<std::uint64_t>(sh->integer("consolidation_max_steps", 100'000, 1, (1LL << 50)));
   s.history_points = static_cast<int>(sh->integer("history_points", 300, 10, 1000000));
   s.vtk_at_strains = sh->numbers("vtk_at_strains", {}, 0);
   sh->finish();

@@ -49,6 +49,7 @@ struct TriaxialSettings {
   std::vector<double> confining_stresses;
   double shear_damping = 0.1;
   double servo_gain = 0.5;
+  std::uint64_t consolidation_max_steps = 100'000;
   int history_points = 300;
   std::vector<double> vtk_at_strains;
   // [output]

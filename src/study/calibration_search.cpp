@@ -56,23 +56,24 @@ double CalibrationSearch::miss(const MacroValues& m) const {
   return worst;
 }
 
-bool CalibrationSearch::met(const MacroValues& m) const { return miss(m) <= 1.0; }
+bool CalibrationSearch::met(const MacroValues& m) const {
+  return miss(m) <= 1.0;
+}
 
 bool CalibrationSearch::record(const MacroValues& m) {
   if (met(m)) return true;
   MicroParameters n = p_;
   n.friction_deg = friction_.next(p_.friction_deg, m.phi_peak_deg, t_.phi_peak_deg);
   if (std::isfinite(t_.young_modulus) && m.young_modulus > 0.0)
-    n.young = std::exp(young_.next(std::log(p_.young), std::log(m.young_modulus),
-                                   std::log(t_.young_modulus)));
+    n.young = std::exp(
+        young_.next(std::log(p_.young), std::log(m.young_modulus), std::log(t_.young_modulus)));
   if (std::isfinite(t_.poisson_ratio))
-    n.kt_over_kn =
-        std::exp(ktkn_.next(std::log(p_.kt_over_kn), m.poisson_ratio, t_.poisson_ratio));
+    n.kt_over_kn = std::exp(ktkn_.next(std::log(p_.kt_over_kn), m.poisson_ratio, t_.poisson_ratio));
   if (bonds_) {
     // log c against log strength; a fit that gives no cohesion counts as a tenth of it.
     const double c = std::max(m.cohesion, 0.1 * t_.cohesion);
-    n.bond_strength = std::exp(
-        bond_.next(std::log(p_.bond_strength), std::log(c), std::log(t_.cohesion)));
+    n.bond_strength =
+        std::exp(bond_.next(std::log(p_.bond_strength), std::log(c), std::log(t_.cohesion)));
   }
   if (std::isfinite(t_.phi_residual_deg))
     n.rolling_friction =

@@ -81,8 +81,10 @@ Evaluation evaluate(const std::vector<nlohmann::json>& summaries) {
 }
 
 nlohmann::json macro_json(const MacroValues& m) {
-  return {{"phi_peak_deg", m.phi_peak_deg},   {"cohesion", m.cohesion},
-          {"young_modulus", m.young_modulus}, {"poisson_ratio", m.poisson_ratio},
+  return {{"phi_peak_deg", m.phi_peak_deg},
+          {"cohesion", m.cohesion},
+          {"young_modulus", m.young_modulus},
+          {"poisson_ratio", m.poisson_ratio},
           {"phi_residual_deg", m.phi_residual_deg}};
 }
 
@@ -106,8 +108,10 @@ nlohmann::json scatter_json(const std::vector<MacroValues>& v) {
     nu.push_back(m.poisson_ratio);
     res.push_back(m.phi_residual_deg);
   }
-  return {{"phi_peak_deg", standard_deviation(phi)}, {"cohesion", standard_deviation(c)},
-          {"young_modulus", standard_deviation(e)},  {"poisson_ratio", standard_deviation(nu)},
+  return {{"phi_peak_deg", standard_deviation(phi)},
+          {"cohesion", standard_deviation(c)},
+          {"young_modulus", standard_deviation(e)},
+          {"poisson_ratio", standard_deviation(nu)},
           {"phi_residual_deg", standard_deviation(res)}};
 }
 
@@ -200,8 +204,11 @@ nlohmann::json run_calibrate(const CalibrateSettings& s, const RunOptions& opt) 
     nlohmann::json checks;
     auto check = [&](const char* key, double got, double target, double limit, bool relative) {
       const double err = relative ? got / target - 1.0 : got - target;
-      checks[key] = {{"target", target}, {"measured", got}, {"error", err},
-                     {"tolerance", limit}, {"met", std::abs(err) <= limit}};
+      checks[key] = {{"target", target},
+                     {"measured", got},
+                     {"error", err},
+                     {"tolerance", limit},
+                     {"met", std::abs(err) <= limit}};
     };
     check("phi_peak_deg", m.phi_peak_deg, g.phi_peak_deg, s.verify_phi_deg, false);
     check("cohesion", m.cohesion, g.cohesion, s.verify_cohesion, false);

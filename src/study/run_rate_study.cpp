@@ -90,8 +90,8 @@ nlohmann::json run_rate_study(const RateStudySettings& s, const RunOptions& opt)
     csv.open(cat(opt.out_dir, "/runs.csv"),
              {"strain_rate", "damping", "seed", "value", "bias", "inertial_number"});
     for (const auto& r : table)
-      csv.row({r["strain_rate"].get<double>(), r["damping"].get<double>(),
-               r["seed"].get<double>(), r["value"].get<double>(), r["bias"].get<double>(),
+      csv.row({r["strain_rate"].get<double>(), r["damping"].get<double>(), r["seed"].get<double>(),
+               r["value"].get<double>(), r["bias"].get<double>(),
                r["inertial_number"].get<double>()});
   }
   const double wall_s =

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/text.hpp"
 #include "core/error.hpp"
+#include "core/text.hpp"
 #include "io/output_files.hpp"
 #include "study/run_studies.hpp"
 #include "study/study_analysis.hpp"
@@ -58,8 +58,8 @@ nlohmann::json run_series(const SeriesSettings& s, const RunOptions& opt) {
       }
   }
   if (counts_left < 2)
-    throw std::runtime_error(cat("fewer than two grain counts have a completed run; see ",
-                                 opt.out_dir, "/runs/*/"));
+    throw std::runtime_error(
+        cat("fewer than two grain counts have a completed run; see ", opt.out_dir, "/runs/*/"));
   const SeriesAnalysis a = analyse_series(samples, b.dimension, s.tolerance, s.with_scatter);
 
   nlohmann::json results;
@@ -67,9 +67,9 @@ nlohmann::json run_series(const SeriesSettings& s, const RunOptions& opt) {
   results["confining_stress"] = b.confining_stresses[0];
   results["extrapolated"] = a.extrapolated;
   auto fit_json = [](const LinearFit& f) {
-    return nlohmann::json{{"intercept", f.intercept}, {"slope", f.slope},
-                          {"intercept_error", f.intercept_error}, {"slope_error", f.slope_error},
-                          {"r2", f.r2}, {"points", f.points}};
+    return nlohmann::json{
+        {"intercept", f.intercept},     {"slope", f.slope}, {"intercept_error", f.intercept_error},
+        {"slope_error", f.slope_error}, {"r2", f.r2},       {"points", f.points}};
   };
   results["mean_fit"] = fit_json(a.mean_fit);
   results["std_fit"] = fit_json(a.std_fit);
@@ -82,19 +82,23 @@ nlohmann::json run_series(const SeriesSettings& s, const RunOptions& opt) {
   results["smallest_tested_count"] = a.smallest_tested_count;
   nlohmann::json groups = nlohmann::json::array();
   for (const auto& g : a.groups)
-    groups.push_back({{"count", g.count},         {"runs", g.runs},
-                      {"d0_over_L", g.d0_over_L}, {"mean", g.mean},
-                      {"std", g.std},             {"bias", g.bias},
-                      {"bias_fit", g.bias_fit},   {"scatter", g.scatter},
+    groups.push_back({{"count", g.count},
+                      {"runs", g.runs},
+                      {"d0_over_L", g.d0_over_L},
+                      {"mean", g.mean},
+                      {"std", g.std},
+                      {"bias", g.bias},
+                      {"bias_fit", g.bias_fit},
+                      {"scatter", g.scatter},
                       {"scatter_fit", g.scatter_fit}});
   results["groups"] = groups;
   results["failed_runs"] = failed_runs(runs, summaries);
 
   if (study_root()) {
     HistoryCsv table;
-    table.open(cat(opt.out_dir, "/runs.csv"), {"count", "seed", "d0_over_L", "value",
-                                           "porosity_initial", "peak_q", "phi_peak_deg",
-                                           "young_modulus", "inertial_number"});
+    table.open(cat(opt.out_dir, "/runs.csv"),
+               {"count", "seed", "d0_over_L", "value", "porosity_initial", "peak_q", "phi_peak_deg",
+                "young_modulus", "inertial_number"});
     for (std::size_t i = 0; i < runs.size(); ++i) {
       if (!run_completed(summaries[i])) continue;
       const auto& r = summaries[i];

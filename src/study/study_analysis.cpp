@@ -98,7 +98,8 @@ RateAnalysis analyse_rates(const std::vector<RateSample>& runs, double tolerance
       if (damping > 0.0) d.k = d.fit.slope / damping;
     }
     // From the joint fit: the bias |k| D rate / QS reaches the tolerance at this rate.
-    if (damping > 0.0 && a.k != 0.0 && qs > 0.0) d.max_rate = tolerance * qs / (std::abs(a.k) * damping);
+    if (damping > 0.0 && a.k != 0.0 && qs > 0.0)
+      d.max_rate = tolerance * qs / (std::abs(a.k) * damping);
     a.per_damping.push_back(d);
   }
   return a;

@@ -13,14 +13,14 @@ namespace geodem {
 // --- Representativeness (kind = "series") --------------------------------------------
 
 struct SizeSample {
-  std::size_t count = 0;  // grains in the sample
+  std::size_t count = 0;   // grains in the sample
   double d0_over_L = 0.0;  // mean grain size over sample height
   double value = 0.0;      // the studied result (peak stress...)
 };
 
 struct SizeGroup {
   std::size_t count = 0, runs = 0;
-  double d0_over_L = 0.0;   // mean over the group's runs
+  double d0_over_L = 0.0;  // mean over the group's runs
   double mean = 0.0, std = 0.0;
   double bias = 0.0;         // (mean - extrapolated) / extrapolated, measured
   double bias_fit = 0.0;     // slope * d0/L / extrapolated, from the fit of the means
@@ -56,7 +56,7 @@ struct RateSample {
 
 struct DampingFit {
   double damping = 0.0;
-  LinearFit fit;  // value against strain rate, this damping only (needs two rates)
+  LinearFit fit;   // value against strain rate, this damping only (needs two rates)
   double k = 0.0;  // slope / damping (0 without damping)
   // Largest strain rate whose rate bias k D rate / QS stays within the tolerance.
   double max_rate = std::numeric_limits<double>::infinity();

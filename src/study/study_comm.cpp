@@ -46,7 +46,9 @@ void finalize() {
   g_active = false;
 }
 
-bool active() { return g_active; }
+bool active() {
+  return g_active;
+}
 
 bool built_with_mpi() {
 #ifdef GEODEM_HAVE_MPI
@@ -55,8 +57,12 @@ bool built_with_mpi() {
   return false;
 #endif
 }
-int rank() { return g_rank; }
-int size() { return g_size; }
+int rank() {
+  return g_rank;
+}
+int size() {
+  return g_size;
+}
 
 std::vector<std::string> all_gather(const std::string& mine) {
   if (!g_active) return {mine};
@@ -74,8 +80,8 @@ std::vector<std::string> all_gather(const std::string& mine) {
                  MPI_COMM_WORLD);
   std::vector<std::string> parts;
   for (std::size_t r = 0; r < lens.size(); ++r)
-    parts.push_back(all.substr(static_cast<std::size_t>(offsets[r]),
-                               static_cast<std::size_t>(lens[r])));
+    parts.push_back(
+        all.substr(static_cast<std::size_t>(offsets[r]), static_cast<std::size_t>(lens[r])));
   return parts;
 #else
   return {mine};

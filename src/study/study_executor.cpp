@@ -1,5 +1,5 @@
-#include "core/text.hpp"
 #include "study/study_executor.hpp"
+#include "core/text.hpp"
 
 #include <unistd.h>
 
@@ -32,8 +32,7 @@ nlohmann::json finished_summary(const std::string& dir, const nlohmann::json& re
   if (!in) return nullptr;
   try {
     nlohmann::json s = nlohmann::json::parse(in);
-    if (s.value("status", "") == "completed" && s.contains("scenario") &&
-        s["scenario"] == resolved)
+    if (s.value("status", "") == "completed" && s.contains("scenario") && s["scenario"] == resolved)
       return s;
   } catch (const nlohmann::json::exception&) {
   }
@@ -118,7 +117,8 @@ std::vector<std::size_t> my_share(const std::vector<StudyRun>& runs) {
   std::vector<double> load(static_cast<std::size_t>(comm::size()), 0.0);
   std::vector<std::size_t> mine;
   for (std::size_t i : order) {
-    const auto r = static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+    const auto r =
+        static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
     load[r] += runs[i].cost;
     if (static_cast<int>(r) == comm::rank()) mine.push_back(i);
   }
@@ -127,12 +127,15 @@ std::vector<std::size_t> my_share(const std::vector<StudyRun>& runs) {
 
 }  // namespace
 
-bool study_root() { return comm::rank() == 0; }
+bool study_root() {
+  return comm::rank() == 0;
+}
 
 StudyExecutor::StudyExecutor(StudyOptions options) : opt_(std::move(options)) {
   std::error_code ec;
   std::filesystem::create_directories(cat(opt_.out_dir, "/runs"), ec);
-  if (ec) throw std::runtime_error(cat("cannot create output folder ", opt_.out_dir, ": ", ec.message()));
+  if (ec)
+    throw std::runtime_error(cat("cannot create output folder ", opt_.out_dir, ": ", ec.message()));
 }
 
 std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs,
@@ -194,7 +197,8 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
 
   // Exchange: every rank sends {index: summary} for its share, and receives all.
   nlohmann::json part = nlohmann::json::object();
-  for (std::size_t i : mine) part[std::to_string(i)] = {{"summary", results[i]}, {"reused", reused[i] != 0}};
+  for (std::size_t i : mine)
+    part[std::to_string(i)] = {{"summary", results[i]}, {"reused", reused[i] != 0}};
   for (const std::string& p : comm::all_gather(part.dump())) {
     const nlohmann::json received = nlohmann::json::parse(p);
     for (const auto& [key, v] : received.items()) {

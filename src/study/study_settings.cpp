@@ -1,5 +1,5 @@
-#include "core/text.hpp"
 #include "study/study_settings.hpp"
+#include "core/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -74,8 +74,7 @@ RateStudySettings read_rate_study(const toml::table& root, const std::string& fi
   RateStudySettings s;
   s.study = read_base(root, file, "rate_study", {"rate_study"});
   single_confining_stress(s.study);
-  TableReader t =
-      study_table(root, file, s.study.resolved, "rate_study", "strain_rates, damping");
+  TableReader t = study_table(root, file, s.study.resolved, "rate_study", "strain_rates, damping");
   s.strain_rates = t.numbers("strain_rates", std::vector<double>{}, 1);
   for (double r : s.strain_rates)
     if (!(r > 0.0 && r <= 100.0)) t.fail("strain_rates", "expected strain rates in (0, 100] 1/s");

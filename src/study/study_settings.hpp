@@ -17,8 +17,8 @@ namespace geodem {
 
 struct StudyBase {
   std::string file;
-  toml::table base;        // the file without its study tables, kind = "triaxial"
-  TriaxialSettings check;  // the base read once: early errors and derived values
+  toml::table base;         // the file without its study tables, kind = "triaxial"
+  TriaxialSettings check;   // the base read once: early errors and derived values
   nlohmann::json resolved;  // base and study tables, for summary.json
   bool plots = true;        // the study's figures (output.plots)
 };
@@ -26,7 +26,7 @@ struct StudyBase {
 // The result of each run that a series or rate study analyses.
 inline const std::vector<std::string>& study_quantities() {
   static const std::vector<std::string> q = {
-      "peak_q",        "sigma1_peak",   "phi_peak_deg",   "phi_residual_deg",
+      "peak_q",        "sigma1_peak",   "phi_peak_deg",  "phi_residual_deg",
       "young_modulus", "poisson_ratio", "dilatancy_deg", "axial_strain_at_peak"};
   return q;
 }
@@ -66,8 +66,7 @@ struct CalibrateSettings {
   // Search tolerances (mean over the search seeds) and verification tolerances
   // (fresh seeds): friction in degrees, cohesion in Pa, modulus relative.
   double tol_phi_deg = 0.5, tol_cohesion = 500.0, tol_young = 0.05, tol_poisson = 0.02;
-  double verify_phi_deg = 1.5, verify_cohesion = 2000.0, verify_young = 0.15,
-         verify_poisson = 0.05;
+  double verify_phi_deg = 1.5, verify_cohesion = 2000.0, verify_young = 0.15, verify_poisson = 0.05;
   double upscale = 2.0;  // grain size factor of the upscaling check (1: none)
   double gravity = 9.81;
 };

@@ -2,10 +2,10 @@
 // scenario's own keys win, and bad references or values name the right file.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "io/material_file.hpp"
 #include "lab/triaxial_settings.hpp"
@@ -39,8 +39,8 @@ MaterialFile example() {
   MaterialFile m;
   m.name = "test soil";
   m.dimension = 2;
-  m.material = {{"density", 2300.0}, {"young", 3.5e7},          {"kt_over_kn", 0.25},
-                {"friction_deg", 33.5}, {"normal_cohesion", 8e4}, {"shear_cohesion", 8e4},
+  m.material = {{"density", 2300.0},      {"young", 3.5e7},         {"kt_over_kn", 0.25},
+                {"friction_deg", 33.5},   {"normal_cohesion", 8e4}, {"shear_cohesion", 8e4},
                 {"rolling_friction", 0.1}};
   m.grain = "pair_0.9";
   m.radius_fuzz = 0.2;

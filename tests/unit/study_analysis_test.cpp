@@ -37,7 +37,8 @@ TEST(LinearFit, StandardErrorsMatchTheScatterOfNoisyLines) {
     for (double v : x) {
       // Box-Muller normal deviates.
       const double u1 = rng.uniform(1e-12, 1.0), u2 = rng.uniform(0.0, 1.0);
-      y.push_back(1.0 + 0.5 * v + sigma * std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2));
+      y.push_back(1.0 + 0.5 * v +
+                  sigma * std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2));
     }
     const LinearFit f = fit_line(x, y);
     slopes.push_back(f.slope);
