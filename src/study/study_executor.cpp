@@ -152,12 +152,11 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
   std::vector<nlohmann::json> results(runs.size());
   std::vector<char> reused(runs.size(), 0);
   std::atomic<std::size_t> next{0};
-  std::atomic<bool> stop{false};
 
   auto work = [&] {
     for (;;) {
       const std::size_t k = next.fetch_add(1);
-      if (k >= mine.size() || stop.load()) return;
+      if (k >= mine.size()) return;
       const std::size_t i = mine[k];
       const std::string dir = cat(opt_.out_dir, "/runs/", runs[i].id);
       nlohmann::json summary = finished_summary(dir, settings[i].resolved);
