@@ -8,15 +8,23 @@ namespace geodem {
 double SecantStep::next(double x, double y, double target) {
   xs_.push_back(x);
   ys_.push_back(y);
+  // Least-squares slope of the newest points (up to kWindow): with two points the
+  // secant, with more an average that noisy evaluations cannot tip over as easily.
+  constexpr std::size_t kWindow = 4;
+  const std::size_t first = xs_.size() > kWindow ? xs_.size() - kWindow : 0;
+  const auto n = static_cast<double>(xs_.size() - first);
+  double mx = 0.0, my = 0.0;
+  for (std::size_t j = first; j < xs_.size(); ++j) mx += xs_[j] / n, my += ys_[j] / n;
+  double sxx = 0.0, sxy = 0.0;
+  for (std::size_t j = first; j < xs_.size(); ++j) {
+    sxx += (xs_[j] - mx) * (xs_[j] - mx);
+    sxy += (xs_[j] - mx) * (ys_[j] - my);
+  }
   double slope = slope0_;
-  // The newest earlier point at a different x gives the secant.
-  for (std::size_t j = xs_.size() - 1; j-- > 0;) {
-    if (std::abs(xs_[j] - x) > 1e-12 * (1.0 + std::abs(x))) {
-      const double s = (ys_[j] - y) / (xs_[j] - x);
-      // Same sign as the expected relation and not flat: a usable slope.
-      if (s * slope0_ > 0.0 && std::abs(s) > 0.05 * std::abs(slope0_)) slope = s;
-      break;
-    }
+  if (sxx > 1e-24 * (1.0 + mx * mx)) {
+    const double s = sxy / sxx;
+    // Same sign as the expected relation and not flat: a usable slope.
+    if (s * slope0_ > 0.0 && std::abs(s) > 0.05 * std::abs(slope0_)) slope = s;
   }
   const double step = std::clamp((target - y) / slope, -max_step_, max_step_);
   return std::clamp(x + step, lo_, hi_);

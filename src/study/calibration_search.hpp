@@ -29,9 +29,10 @@ struct SearchTolerances {
   double phi_deg = 0.5, cohesion = 500.0, young = 0.05, poisson = 0.02;
 };
 
-// Secant root finding of y(x) = target from successive evaluations, with a default
-// slope until two points are known (or when noise gives a slope of the wrong sign),
-// a step limit and bounds.
+// Root finding of y(x) = target from successive evaluations: a Newton step with the
+// least-squares slope of the last four points (the secant when two are known), a
+// default slope until then (or when noise gives a slope of the wrong sign or near
+// zero), a step limit and bounds.
 class SecantStep {
  public:
   SecantStep(double default_slope, double max_step, double lo, double hi)

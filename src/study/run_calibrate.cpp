@@ -135,6 +135,7 @@ nlohmann::json run_calibrate(const CalibrateSettings& s, const RunOptions& opt) 
 
   StudyExecutor exec({opt.out_dir, s.study.file, opt.quiet, opt.threads});
   std::vector<nlohmann::json> all_summaries;
+  nlohmann::json failed = nlohmann::json::array();
   auto batch = [&](const std::string& tag, const MicroParameters& p, std::uint64_t first_seed,
                    int seeds, double size_factor) {
     std::vector<StudyRun> runs;
@@ -156,6 +157,7 @@ nlohmann::json run_calibrate(const CalibrateSettings& s, const RunOptions& opt) 
       runs.push_back(std::move(r));
     }
     auto summaries = exec.run(runs, cat("calibration ", tag));
+    for (auto& f : failed_runs(runs, summaries)) failed.push_back(std::move(f));
     all_summaries.insert(all_summaries.end(), summaries.begin(), summaries.end());
     return evaluate(summaries);
   };
@@ -242,7 +244,7 @@ nlohmann::json run_calibrate(const CalibrateSettings& s, const RunOptions& opt) 
   results["porosity"] = verify.porosity;
   if (std::isfinite(g.unit_weight))
     results["unit_weight"] = density * s.gravity * (1.0 - verify.porosity);
-  results["failed_runs"] = nlohmann::json::array();
+  results["failed_runs"] = failed;
 
   if (study_root()) {
     MaterialFile mf;

@@ -203,7 +203,12 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
     for (const auto& [key, v] : received.items()) {
       const std::size_t i = std::stoul(key);
       results[i] = v["summary"];
-      if (v["reused"].get<bool>()) ++reused_;
+      if (v["reused"].get<bool>()) {
+        ++reused_;
+      } else if (results[i].contains("timing")) {
+        const auto& t = results[i]["timing"];
+        particle_steps_ += t.value("particle_steps_per_s", 0.0) * t.value("wall_s", 0.0);
+      }
       ++done_;
     }
   }

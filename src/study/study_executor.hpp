@@ -43,11 +43,14 @@ class StudyExecutor {
   // Totals over all calls, all ranks.
   std::size_t runs_done() const { return done_; }
   std::size_t runs_reused() const { return reused_; }
+  // Particle-steps of the runs computed now (not reused), for the study's throughput.
+  double particle_steps_computed() const { return particle_steps_; }
   const StudyOptions& options() const { return opt_; }
 
  private:
   StudyOptions opt_;
   std::size_t done_ = 0, reused_ = 0;
+  double particle_steps_ = 0.0;
 };
 
 // Rank 0 writes the study's own files; the other ranks only run.

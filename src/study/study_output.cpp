@@ -1,5 +1,6 @@
 #include "study/study_output.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "study/study_comm.hpp"
@@ -19,19 +20,20 @@ nlohmann::json failed_runs(const std::vector<StudyRun>& runs,
 
 nlohmann::json study_timing(const std::vector<nlohmann::json>& summaries, double wall_s,
                             const StudyExecutor& executor) {
-  double steps = 0.0, particle_steps = 0.0, particles = 0.0;
+  double steps = 0.0, particles = 0.0;
   for (const auto& s : summaries) {
     if (!s.contains("timing")) continue;
     const auto& t = s["timing"];
     steps += t.value("steps", 0.0);
-    particle_steps += t.value("particle_steps_per_s", 0.0) * t.value("wall_s", 0.0);
-    particles += t.value("particles", 0.0);
+    particles = std::max(particles, t.value("particles", 0.0));
   }
   nlohmann::json t;
   t["wall_s"] = wall_s;
   t["steps"] = steps;
   t["particles"] = particles;
-  t["particle_steps_per_s"] = wall_s > 0.0 ? particle_steps / wall_s : 0.0;
+  // Runs reused from an earlier invocation took no time now: only the runs computed now
+  // count in the throughput.
+  t["particle_steps_per_s"] = wall_s > 0.0 ? executor.particle_steps_computed() / wall_s : 0.0;
   t["threads"] = executor.options().workers;
   t["ranks"] = comm::size();
   t["runs_done"] = executor.runs_done();

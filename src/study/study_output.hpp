@@ -18,8 +18,9 @@ inline bool run_completed(const nlohmann::json& summary) {
 nlohmann::json failed_runs(const std::vector<StudyRun>& runs,
                            const std::vector<nlohmann::json>& summaries);
 
-// summary.json "timing": wall time of the study, steps and particle-steps summed over
-// the runs done now and before, workers per rank, ranks, runs done and reused.
+// summary.json "timing": wall time of the study, steps summed over the runs (done now
+// and before), the largest run's particle count, the particle-steps per second of the
+// runs computed now, workers per rank, ranks, runs done and reused.
 nlohmann::json study_timing(const std::vector<nlohmann::json>& summaries, double wall_s,
                             const StudyExecutor& executor);
 

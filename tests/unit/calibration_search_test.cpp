@@ -40,6 +40,17 @@ TEST(SecantStep, LimitsTheStepKeepsBoundsAndIgnoresAWrongSignedSecant) {
   EXPECT_DOUBLE_EQ(s.next(3.0, -1.0, 10.0), 5.0);
 }
 
+TEST(SecantStep, AveragesTheSlopeOverTheLastFourPoints) {
+  // y = 2x with noise +-0.1: the last two points alone give a slope of 1.8, the least
+  // squares of the four give 1.96 (sxy = 9.8, sxx = 5).
+  SecantStep s(1.0, 100.0, -1e9, 1e9);
+  const double ys[] = {0.1, 1.9, 4.1, 5.9};
+  double x = 0.0;
+  for (int k = 0; k < 3; ++k) s.next(k, ys[k], 10.0);
+  x = s.next(3.0, ys[3], 10.0);
+  EXPECT_NEAR(x, 3.0 + 4.1 / 1.96, 1e-12);
+}
+
 TEST(CalibrationSearch, ReachesCoupledTargetsFromAPoorStart) {
   CalibrationTargets t;
   t.phi_peak_deg = 34.0;
