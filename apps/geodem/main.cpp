@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "io/material_file.hpp"
 #include "io/run_output.hpp"
 #include "io/toml_reader.hpp"
@@ -121,7 +122,7 @@ int run_main(int argc, char** argv) {
 
   std::string scenario, out_dir = "out", plot_dir;
   std::vector<std::string> overrides;
-  int threads = 1;
+  int threads = geodem::default_threads();
   bool quiet = false;
 
   auto* run = app.add_subcommand("run", "run a scenario");
@@ -129,8 +130,10 @@ int run_main(int argc, char** argv) {
   run->add_option("--out", out_dir, "output folder")->capture_default_str();
   run->add_option("--set", overrides, "override a scenario key: --set sample.count=2000");
   run->add_option("--threads", threads,
-                  "worker threads (studies: runs side by side on each MPI rank)")
-      ->check(CLI::Range(1, 1024));
+                  "threads of the step; studies: runs side by side on each MPI rank "
+                  "(default: GEODEM_THREADS, else OMP_NUM_THREADS, else 1)")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
   run->add_flag("--quiet", quiet, "no progress display");
 
   auto* check = app.add_subcommand("check", "validate a scenario without running it");

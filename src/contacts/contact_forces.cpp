@@ -1,33 +1,95 @@
+// The contact force stage on several threads, with results that depend neither on the
+// number of threads nor on when the neighbour list was rebuilt.
+//
+// Each grain-grain pair is listed once, in the row of its lower index, and its force
+// goes to both grains. The grains are cut into slabs: fixed ranges of indices whose
+// length depends only on the grain count. The slabs run side by side; each runs its
+// rows in index order. A force on a grain of the same slab is added at once; a force
+// on a grain of a later slab (its index is higher) is kept in the slab's list of
+// crossing forces, which are added afterwards, slab by slab, in order. Every grain
+// thus sums its forces in one fixed order: first those from its own slab's rows (by
+// row), then those from earlier slabs (by slab, then row). Pairs listed but apart add
+// nothing, so the list's skin and rebuilds do not change the order either. Sums over
+// contacts (stress, wall forces, broken bonds) are kept per slab and added in slab
+// order.
 #include "contacts/contact_forces.hpp"
 
 #include <algorithm>
 
 #include "contacts/contact_law.hpp"
+#include "core/parallel.hpp"
 
 namespace geodem {
 
 namespace {
 
+// A force and torque from a row of one slab on a grain of a later slab.
 template <int D>
-void note_overlap(World<D>& world, std::size_t i, std::int64_t partner, double ratio) {
-  if (world.overlap_offender >= 0) return;
-  world.overlap_offender = static_cast<std::int64_t>(i);
-  world.overlap_partner = partner;
-  world.overlap_ratio = ratio;
+struct CrossingForce {
+  typename Dim<D>::Vec force;
+  typename Dim<D>::Rot torque;
+  std::uint32_t grain;
+};
+
+// What one slab adds to the world's sums.
+template <int D>
+struct SlabTally {
+  using Vec = typename Dim<D>::Vec;
+  ContactStats<D> stats;
+  std::uint64_t broken_bonds = 0;
+  std::int64_t overlap_offender = -1, overlap_partner = -1;
+  double overlap_ratio = 0.0;
+  std::vector<Vec> wall_force;  // per wall
+  std::vector<double> wall_stiffness;
+  std::vector<CrossingForce<D>> crossing;
+
+  void note_overlap(std::size_t i, std::int64_t partner, double ratio) {
+    if (overlap_offender >= 0) return;
+    overlap_offender = static_cast<std::int64_t>(i);
+    overlap_partner = partner;
+    overlap_ratio = ratio;
+  }
+};
+
+template <int D>
+void add_stats(ContactStats<D>& a, const ContactStats<D>& b) {
+  a.fabric_stress += b.fabric_stress;
+  a.sum_force += b.sum_force;
+  a.contacts += b.contacts;
+  a.wall_contacts += b.wall_contacts;
+  a.spar_contacts += b.spar_contacts;
+  a.elastic_energy += b.elastic_energy;
+}
+
+// Slab length for n grains: a function of n alone (never of the thread count), long
+// enough that few pairs cross slabs, short enough for 32 slabs to share among threads.
+inline std::size_t slab_length(std::size_t n) {
+  return std::max<std::size_t>(kParallelMin, (n + 31) / 32);
+}
+
+// Runs body(slab, first, last) for every slab, side by side.
+template <int D, typename Body>
+void for_slabs(const World<D>& world, Body&& body) {
+  const std::size_t n = world.particles.size(), len = slab_length(n);
+  const auto ns = static_cast<std::ptrdiff_t>((n + len - 1) / len);
+  const bool par = world.threads > 1 && ns >= 2;
+#pragma omp parallel for num_threads(world.threads) schedule(dynamic, 1) if (par)
+  for (std::ptrdiff_t s = 0; s < ns; ++s) {
+    const std::size_t first = static_cast<std::size_t>(s) * len;
+    body(static_cast<std::size_t>(s), first, std::min(n, first + len));
+  }
 }
 
 // Grain-grain contacts. `Extras`: the contacts carry rolling springs and bond states
 // (a separate instantiation, so that plain frictional packings pay nothing for them).
 template <int D, bool Measure, bool Extras>
-void grain_pairs(World<D>& world) {
+void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   using Vec = typename Dim<D>::Vec;
   using Rot = typename Dim<D>::Rot;
   auto& P = world.particles;
   auto& L = world.nlist;
-  const std::size_t n = P.size();
   const double dt = world.dt;
   const std::size_t nmat = world.materials.size();
-  auto& st = world.stats;
   // Raw pointers: the compiler then knows the arrays do not move inside the loops.
   const Vec* __restrict pos = P.pos.data();
   const Vec* __restrict vel = P.vel.data();
@@ -43,9 +105,9 @@ void grain_pairs(World<D>& world) {
   ContactExtra<D>* __restrict extra = L.extra.data();
   const PairLaw* pair_laws = world.pair_laws.data();
   const double overlap_limit = world.overlap_limit;
-  for (std::size_t i = 0; i < n; ++i) {
+  auto row = [&](std::size_t i, std::size_t slab_end, SlabTally<D>& t) {
     const std::uint32_t b = start[i], e = start[i + 1];
-    if (b == e) continue;
+    if (b == e) return;
     const Vec xi = pos[i];
     const Vec vi = vel[i];
     const Rot wi = angvel[i];
@@ -74,7 +136,7 @@ void grain_pairs(World<D>& world) {
       const Vec nrm = d * (1.0 / dist);
       const double delta = rs - dist;
       if (delta > overlap_limit * std::min(ri, rj)) [[unlikely]]
-        note_overlap(world, i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
+        t.note_overlap(i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
       const double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;  // centre-to-contact lengths
       // Surface velocities at the contact point.
       const Vec vrel =
@@ -90,52 +152,65 @@ void grain_pairs(World<D>& world) {
                                     fn, broken);
         if (broken) {
           extra[k].bonded = 0;
-          ++world.broken_bonds;
+          ++t.broken_bonds;
           if (delta <= 0.0) {
             extra[k] = ContactExtra<D>{};
             continue;
           }
         }
       }
-      force[j] += f;
       fi -= f;
       // Torques: lever arms +ai n (grain i) and -aj n (grain j); the normal part gives none.
       const Rot tq = Dim<D>::cross(nrm, f);
       ti -= ai * tq;
-      torque[j] -= aj * tq;
+      Rot tj = -(aj * tq);
       if constexpr (Extras) {
         if (law.rolling()) {
           const Rot m = rolling_moment<D>(law, tangential_stiffness(law, ri, rj, delta), ri, rj,
                                           nrm, Rot(angvel[j] - wi), dt, fn, extra[k]);
-          torque[j] += m;
+          tj += m;
           ti -= m;
         }
       }
+      if (j < slab_end) {
+        force[j] += f;
+        torque[j] += tj;
+      } else {
+        t.crossing.push_back({f, tj, j});
+      }
       if constexpr (Measure) {
-        st.fabric_stress += d * f.transpose();
-        st.sum_force += f.norm();
-        ++st.contacts;
+        t.stats.fabric_stress += d * f.transpose();
+        t.stats.sum_force += f.norm();
+        ++t.stats.contacts;
         if (fn > 0.0 && law.law == LawKind::kLinear)
-          st.elastic_energy += 0.5 * fn * fn / law.linear_kn(ri, rj);
+          t.stats.elastic_energy += 0.5 * fn * fn / law.linear_kn(ri, rj);
       }
     }
     force[i] += fi;
     torque[i] += ti;
-  }
+  };
+  SlabTally<D>* tally = tallies.data();
+  for_slabs(world, [&](std::size_t s, std::size_t first, std::size_t last) {
+    for (std::size_t i = first; i < last; ++i) row(i, last, tally[s]);
+  });
+  // The crossing forces, slab by slab.
+  for (std::size_t s = 0; s < tallies.size(); ++s)
+    for (const auto& c : tallies[s].crossing) {
+      force[c.grain] += c.force;
+      torque[c.grain] += c.torque;
+    }
 }
 
 template <int D, bool Measure, bool Extras>
-void grain_walls(World<D>& world) {
+void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   using Vec = typename Dim<D>::Vec;
   auto& P = world.particles;
   auto& L = world.nlist;
-  const std::size_t n = P.size();
   const double dt = world.dt;
-  auto& st = world.stats;
-  for (std::size_t i = 0; i < n; ++i) {
+  auto row = [&](std::size_t i, SlabTally<D>& t) {
     const std::uint32_t b = L.wall_start[i], e = L.wall_start[i + 1];
     for (std::uint32_t k = b; k < e; ++k) {
-      auto& wall = world.walls[L.wall[k]];
+      const auto& wall = world.walls[L.wall[k]];
       const Vec xi = P.pos[i];
       const double ri = P.radius[i];
       Vec q;
@@ -162,7 +237,7 @@ void grain_walls(World<D>& world) {
         continue;
       }
       if (delta > world.overlap_limit * ri) [[unlikely]]
-        note_overlap(world, i, -1 - static_cast<std::int64_t>(L.wall[k]), delta / ri);
+        t.note_overlap(i, -1 - static_cast<std::int64_t>(L.wall[k]), delta / ri);
       const double a = ri - 0.5 * delta;
       const Vec vrel = wall.velocity - (P.vel[i] + Dim<D>::cross(P.angvel[i], a * nrm));
       const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
@@ -180,43 +255,80 @@ void grain_walls(World<D>& world) {
           P.torque[i] -= m;
         }
       }
-      wall.force += f;
-      wall.stiffness += law.law == LawKind::kLinear ? law.linear_kn(ri, ri) : 1.5 * fn / delta;
+      t.wall_force[L.wall[k]] += f;
+      t.wall_stiffness[L.wall[k]] +=
+          law.law == LawKind::kLinear ? law.linear_kn(ri, ri) : 1.5 * fn / delta;
       if constexpr (Measure) {
-        st.fabric_stress += (a * nrm) * f.transpose();
-        st.sum_force += f.norm();
-        ++st.wall_contacts;
+        t.stats.fabric_stress += (a * nrm) * f.transpose();
+        t.stats.sum_force += f.norm();
+        ++t.stats.wall_contacts;
         if (fn > 0.0 && law.law == LawKind::kLinear)
-          st.elastic_energy += 0.5 * fn * fn / law.linear_kn(ri, ri);
+          t.stats.elastic_energy += 0.5 * fn * fn / law.linear_kn(ri, ri);
       }
     }
-  }
+  };
+  SlabTally<D>* tally = tallies.data();
+  for_slabs(world, [&](std::size_t s, std::size_t first, std::size_t last) {
+    for (std::size_t i = first; i < last; ++i) row(i, tally[s]);
+  });
 }
 
 }  // namespace
 
 template <int D>
 void compute_contact_forces(World<D>& world) {
-  for (auto& w : world.walls) {
-    w.force = Dim<D>::Vec::Zero();
-    w.stiffness = 0.0;
+  using Vec = typename Dim<D>::Vec;
+  // Per-slab sums, kept between steps so that the step allocates nothing.
+  static thread_local std::vector<SlabTally<D>> tallies;
+  const std::size_t n = world.particles.size(), len = slab_length(n);
+  const std::size_t slabs = (n + len - 1) / len;
+  const std::size_t nw = world.walls.size();
+  if (tallies.size() < slabs) tallies.resize(slabs);
+  for (std::size_t s = slabs; s < tallies.size(); ++s) tallies[s].crossing.clear();
+  for (std::size_t s = 0; s < slabs; ++s) {
+    auto& t = tallies[s];
+    t.crossing.clear();
+    t.stats = ContactStats<D>{};
+    t.broken_bonds = 0;
+    t.overlap_offender = -1;
+    t.wall_force.assign(nw, Vec::Zero());
+    t.wall_stiffness.assign(nw, 0.0);
   }
   const bool extras = world.contact_extras;
   if (world.measure_this_step) {
-    world.stats = ContactStats<D>{};
     if (extras) {
-      grain_pairs<D, true, true>(world);
-      grain_walls<D, true, true>(world);
+      grain_pairs<D, true, true>(world, tallies);
+      grain_walls<D, true, true>(world, tallies);
     } else {
-      grain_pairs<D, true, false>(world);
-      grain_walls<D, true, false>(world);
+      grain_pairs<D, true, false>(world, tallies);
+      grain_walls<D, true, false>(world, tallies);
     }
   } else if (extras) {
-    grain_pairs<D, false, true>(world);
-    grain_walls<D, false, true>(world);
+    grain_pairs<D, false, true>(world, tallies);
+    grain_walls<D, false, true>(world, tallies);
   } else {
-    grain_pairs<D, false, false>(world);
-    grain_walls<D, false, false>(world);
+    grain_pairs<D, false, false>(world, tallies);
+    grain_walls<D, false, false>(world, tallies);
+  }
+  // The slabs' sums, in slab order.
+  for (auto& w : world.walls) {
+    w.force = Vec::Zero();
+    w.stiffness = 0.0;
+  }
+  if (world.measure_this_step) world.stats = ContactStats<D>{};
+  for (std::size_t s = 0; s < slabs; ++s) {
+    const auto& t = tallies[s];
+    if (world.measure_this_step) add_stats(world.stats, t.stats);
+    world.broken_bonds += t.broken_bonds;
+    if (world.overlap_offender < 0 && t.overlap_offender >= 0) {
+      world.overlap_offender = t.overlap_offender;
+      world.overlap_partner = t.overlap_partner;
+      world.overlap_ratio = t.overlap_ratio;
+    }
+    for (std::size_t w = 0; w < nw; ++w) {
+      world.walls[w].force += t.wall_force[w];
+      world.walls[w].stiffness += t.wall_stiffness[w];
+    }
   }
 }
 

@@ -20,6 +20,7 @@
 #include "broadphase/neighbour_search.hpp"
 #include "contacts/contact_forces.hpp"
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "integrate/critical_timestep.hpp"
 #include "integrate/integrator.hpp"
 #include "structures/spar_contacts.hpp"
@@ -61,9 +62,15 @@ bool list_expired(World<D>& world) {
   };
   if (!expired(world.disp_bound + world.radius_growth)) return false;
   const auto& P = world.particles;
-  double d2 = 0.0;
-  for (std::size_t i = 0; i < P.size(); ++i)
-    d2 = std::max(d2, (P.pos[i] - P.pos_at_build[i]).squaredNorm());
+  const auto n = static_cast<std::ptrdiff_t>(P.size());
+  double d2 = 0.0;  // a maximum: the same in any order
+#pragma omp parallel for num_threads(world.threads) schedule(static) \
+    reduction(max                                                    \
+              : d2) if (world.threads > 1 && P.size() >= kParallelMin)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+    d2 = std::max(d2,
+                  (P.pos[static_cast<std::size_t>(i)] - P.pos_at_build[static_cast<std::size_t>(i)])
+                      .squaredNorm());
   world.disp_bound = std::sqrt(d2);
   return expired(world.disp_bound + world.radius_growth);
 }
@@ -136,7 +143,10 @@ void step(World<D>& world) {
   {
     ScopedStage<D> t(world, Stage::kContactForces);
     auto& P = world.particles;
-    for (std::size_t i = 0; i < P.size(); ++i) {
+    const auto n = static_cast<std::ptrdiff_t>(P.size());
+#pragma omp parallel for num_threads(world.threads) \
+    schedule(static) if (world.threads > 1 && P.size() >= kParallelMin)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
       P.force[i].setZero();
       P.torque[i] = Dim<D>::zero_rot();
     }

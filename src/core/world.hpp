@@ -84,6 +84,8 @@ struct World {
   // Every this many neighbour-list builds, grains are renumbered in cell order so
   // that neighbours sit close in memory (0: never; grain indices then stay fixed).
   int sort_interval = 0;
+  // Threads of the step's loops (core/parallel.hpp); results do not depend on it.
+  int threads = 1;
 
   double time = 0.0;
   std::uint64_t step = 0;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "clumps/clump_dynamics.hpp"
+#include "core/parallel.hpp"
 #include "structures/spar_dynamics.hpp"
 
 namespace geodem {
@@ -43,8 +44,12 @@ void integrate(World<D>& world) {
   if (world.track_orientation && P.orient.size() != n) P.orient.resize(n, Dim<D>::identity());
   auto* __restrict orient = P.orient.data();
   const bool track = world.track_orientation;
-  double vmax2 = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
+  double vmax2 = 0.0;  // a maximum: the same in any order
+  const auto nn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for num_threads(world.threads) schedule(static) \
+    reduction(max                                                    \
+              : vmax2) if (world.threads > 1 && n >= kParallelMin)
+  for (std::ptrdiff_t i = 0; i < nn; ++i) {
     if (flags[i] & kClumpMember) continue;  // moved with its clump below
     if (!(flags[i] & kFixed)) {
       Vec a = force[i] * inv_mass[i] + g;

@@ -93,6 +93,7 @@ struct Pullout {
     w.dt_safety = s.dt_safety;
     w.dt_update_interval = s.dt_update_interval;
     w.sort_interval = 10;
+    w.threads = opt.threads;
     w.local_damping = s.deposit_damping;
     kinds = resolve_kinds<2>(s.grains);
     double fsum = 0.0;

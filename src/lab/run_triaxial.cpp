@@ -115,6 +115,7 @@ struct Lab {
     w.dt_safety = s.dt_safety;
     w.dt_update_interval = s.dt_update_interval;
     w.sort_interval = 10;
+    w.threads = opt.threads;
   }
 
   // Radius growth to the isotropic stress; then friction reduction to the target porosity.

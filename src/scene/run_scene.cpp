@@ -39,6 +39,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   using Clock = std::chrono::steady_clock;
   World<D> w;
   build_world<D>(s, w);
+  w.threads = opt.threads;
   prepare_output_dir(opt.out_dir);
   const std::size_t bonds_created = s.bonds_initial ? create_bonds(w, s.bond_gap_tolerance) : 0;
 

@@ -1,0 +1,56 @@
+// Shared-memory parallelism of the step (OpenMP) under one rule: a result never depends
+// on the number of threads. Loops whose iterations write only their own items run as
+// plain parallel loops; sums are taken in fixed blocks whose partial results are added
+// in block order; maxima and minima are exact in any order. The contact forces, which
+// write to both grains of a pair, use the slab colouring of contacts/contact_forces.cpp.
+// A run with 1 thread and one with 8 therefore give bit-identical histories
+// (tests/unit/thread_determinism_test.cpp).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace geodem {
+
+// Loops shorter than this run on the calling thread: a parallel region costs a few
+// microseconds, the work of a few thousand grains.
+constexpr std::size_t kParallelMin = 4096;
+
+// Block length of ordered sums: fixed, so that the partial sums are the same whatever
+// the thread count.
+constexpr std::size_t kSumBlock = 2048;
+
+// Sum of term(i) for i in [0, n), computed in blocks of kSumBlock on up to `threads`
+// threads and added in block order: the same bits for any thread count.
+template <typename T, typename Term>
+T ordered_sum(std::size_t n, int threads, const T& zero, Term&& term) {
+  const std::size_t blocks = (n + kSumBlock - 1) / kSumBlock;
+  if (blocks <= 1) {
+    T s = zero;
+    for (std::size_t i = 0; i < n; ++i) s += term(i);
+    return s;
+  }
+  static thread_local std::vector<T> part;
+  part.assign(blocks, zero);
+  const auto nb = static_cast<std::ptrdiff_t>(blocks);
+#pragma omp parallel for num_threads(threads) schedule(static) if (n >= kParallelMin)
+  for (std::ptrdiff_t b = 0; b < nb; ++b) {
+    const std::size_t lo = static_cast<std::size_t>(b) * kSumBlock;
+    const std::size_t hi = lo + kSumBlock < n ? lo + kSumBlock : n;
+    T s = zero;
+    for (std::size_t i = lo; i < hi; ++i) s += term(i);
+    part[static_cast<std::size_t>(b)] = s;
+  }
+  T total = zero;
+  for (const T& p : part) total += p;
+  return total;
+}
+
+// Threads of a run when none is asked for: GEODEM_THREADS, else OMP_NUM_THREADS, else 1
+// (a run then never competes with the runs of a study or of a test suite for cores).
+int default_threads();
+
+// Whether the engine was built with OpenMP (else every loop runs on one thread).
+bool built_with_openmp();
+
+}  // namespace geodem
