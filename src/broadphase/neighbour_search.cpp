@@ -1,6 +1,7 @@
 #include "broadphase/neighbour_search.hpp"
 
 #include "clumps/clump_dynamics.hpp"
+#include "core/parallel.hpp"
 #include "structures/spar_geometry.hpp"
 
 #include <algorithm>
@@ -200,7 +201,11 @@ void build_neighbour_list(World<D>& world) {
   L.skin = skin_length(world);
 
   // Keep the old rows to merge their history.
-  static thread_local NeighbourList<D> old;
+  // Scratch kept between builds, one per calling thread (the runs of a study are threads).
+  // Parallel regions below reach it through the references, never by the variable's
+  // name, which would name each OpenMP thread's own instance.
+  static thread_local NeighbourList<D> old_rows;
+  NeighbourList<D>& old = old_rows;
   old.swap_rows(L);
   const bool have_old = old.start.size() == n + 1;
 
@@ -237,7 +242,8 @@ void build_neighbour_list(World<D>& world) {
       if (cells <= max_cells) break;
       cell *= 1.25;
     }
-    static thread_local Grid<D> g;
+    static thread_local Grid<D> grid;
+    Grid<D>& g = grid;
     g.lo = lo;
     g.inv_cell = 1.0 / cell;
     for (int k = 0; k < D; ++k)
@@ -274,15 +280,18 @@ void build_neighbour_list(World<D>& world) {
       g.cell_of.swap(cells);
     }
 
+    // Rows in two passes over the grains, each on several threads: count every row's
+    // pairs, then fill each row at its offset. The rows are the same whatever the threads.
     const int zr = D == 3 ? 1 : 0;
     const bool clumps = !P.clump.empty();
-    for (std::size_t i = 0; i < n; ++i) {
+    // Calls pair(j) for each grain j > i within reach of grain i, and wall(w) for each
+    // wall within reach.
+    auto scan = [&](std::size_t i, auto&& pair, auto&& wall) {
       const Vec xi = P.pos[i];
       const std::uint32_t ci = clumps ? P.clump[i] : kNoClump;
       const double ri = P.radius[i] + L.skin;
       std::array<int, 3> c{0, 0, 0};
       for (int k = 0; k < D; ++k) c[k] = g.coord(xi, k);
-      const std::size_t row_begin = L.other.size();
       for (int dz = -zr; dz <= zr; ++dz) {
         const int cz = c[2] + dz;
         if (cz < 0 || cz >= g.dims[2]) continue;
@@ -298,23 +307,46 @@ void build_neighbour_list(World<D>& world) {
             if (j <= i) continue;
             if (ci != kNoClump && P.clump[j] == ci) continue;  // members of one clump
             const double reach = ri + P.radius[j];
-            if ((P.pos[j] - xi).squaredNorm() < reach * reach) L.other.push_back(j);
+            if ((P.pos[j] - xi).squaredNorm() < reach * reach) pair(j);
           }
         }
       }
-      std::sort(L.other.begin() + static_cast<std::ptrdiff_t>(row_begin), L.other.end());
-      L.start[i + 1] = static_cast<std::uint32_t>(L.other.size());
-
       // Walls: few, so every grain checks each (documented in docs/architecture.md).
       for (std::size_t w = 0; w < world.walls.size(); ++w) {
         Vec q;
         wall_closest(world.walls[w], xi, q, /*apply_owner_rule=*/false);
-        const auto& wall = world.walls[w];
+        const auto& wl = world.walls[w];
         const double gap =
-            wall.kind == WallKind::kPlane ? (xi - wall.point).dot(wall.normal) : (q - xi).norm();
-        if (gap < ri) L.wall.push_back(static_cast<std::uint32_t>(w));
+            wl.kind == WallKind::kPlane ? (xi - wl.point).dot(wl.normal) : (q - xi).norm();
+        if (gap < ri) wall(static_cast<std::uint32_t>(w));
       }
-      L.wall_start[i + 1] = static_cast<std::uint32_t>(L.wall.size());
+    };
+    const auto ni = static_cast<std::ptrdiff_t>(n);
+    const bool par = world.threads > 1 && n >= kParallelMin;
+#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
+    for (std::ptrdiff_t ii = 0; ii < ni; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      std::uint32_t np = 0, nw = 0;
+      scan(
+          i, [&](std::uint32_t) { ++np; }, [&](std::uint32_t) { ++nw; });
+      L.start[i + 1] = np;
+      L.wall_start[i + 1] = nw;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      L.start[i + 1] += L.start[i];
+      L.wall_start[i + 1] += L.wall_start[i];
+    }
+    L.other.resize(L.start[n]);
+    L.wall.resize(L.wall_start[n]);
+    std::uint32_t* other = L.other.data();
+    std::uint32_t* walls = L.wall.data();
+#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
+    for (std::ptrdiff_t ii = 0; ii < ni; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      std::uint32_t p = L.start[i], q = L.wall_start[i];
+      scan(
+          i, [&](std::uint32_t j) { other[p++] = j; }, [&](std::uint32_t w) { walls[q++] = w; });
+      std::sort(other + L.start[i], other + p);
     }
     if (!world.spars.empty()) list_spar_pairs(world, g, rmax);
   }
@@ -329,9 +361,14 @@ void build_neighbour_list(World<D>& world) {
   const ContactExtra<D> no_extra{};
   // A bonded pair that is no longer listed has separated beyond the skin: its bond is
   // broken (only possible when a bond's elastic stretch exceeds the skin).
-  auto drop_extra = [&world](const ContactExtra<D>& e) { world.broken_bonds += e.bonded; };
   auto drop_nothing = [](const auto&) {};
-  for (std::size_t i = 0; i < n; ++i) {
+  std::uint64_t dropped_bonds = 0;  // a count: the same in any order
+  const auto rows = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for num_threads(world.threads) schedule(static) reduction(+ : dropped_bonds) \
+    if (world.threads > 1 && n >= kParallelMin)
+  for (std::ptrdiff_t ii = 0; ii < rows; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    auto drop_extra = [&dropped_bonds](const ContactExtra<D>& e) { dropped_bonds += e.bonded; };
     const std::size_t nb = L.start[i], nn = L.start[i + 1] - nb;
     const std::size_t wb = L.wall_start[i], wn = L.wall_start[i + 1] - wb;
     if (have_old) {
@@ -352,6 +389,7 @@ void build_neighbour_list(World<D>& world) {
       for (std::size_t k = 0; k < wn; ++k) L.wall_spring[wb + k] = Vec::Zero();
     }
   }
+  world.broken_bonds += dropped_bonds;
   if (!L.spar_start.empty()) {
     L.spar_spring.assign(L.spar.size(), Vec::Zero());
     if (have_old && old.spar_start.size() == n + 1) {
@@ -364,7 +402,7 @@ void build_neighbour_list(World<D>& world) {
     }
   }
 
-  for (std::size_t i = 0; i < n; ++i) P.pos_at_build[i] = P.pos[i];
+  P.pos_at_build = P.pos;
   for (auto& w : world.walls) w.displacement = Vec::Zero();
   world.spars.pos_at_build = world.spars.pos;
   world.disp_bound = 0.0;

@@ -30,8 +30,9 @@ T ordered_sum(std::size_t n, int threads, const T& zero, Term&& term) {
     for (std::size_t i = 0; i < n; ++i) s += term(i);
     return s;
   }
-  static thread_local std::vector<T> part;
-  part.assign(blocks, zero);
+  static thread_local std::vector<T> parts;  // this caller's; reached below by pointer
+  parts.assign(blocks, zero);
+  T* part = parts.data();
   const auto nb = static_cast<std::ptrdiff_t>(blocks);
 #pragma omp parallel for num_threads(threads) schedule(static) if (n >= kParallelMin)
   for (std::ptrdiff_t b = 0; b < nb; ++b) {
@@ -42,7 +43,7 @@ T ordered_sum(std::size_t n, int threads, const T& zero, Term&& term) {
     part[static_cast<std::size_t>(b)] = s;
   }
   T total = zero;
-  for (const T& p : part) total += p;
+  for (std::size_t b = 0; b < blocks; ++b) total += part[b];
   return total;
 }
 
