@@ -36,11 +36,12 @@ def time_v(cmd, cwd=None):
     return wall, rss, r.stdout + r.stderr
 
 
-def run_geodem(exe, n, dim, out, settle, dense):
+def run_geodem(exe, n, dim, out, settle, dense, threads=1):
     subprocess.run([sys.executable, str(HERE / "geodem_scenario.py"), str(n), str(out), "--dim", str(dim),
                     "--settle", str(settle), "--dense", str(dense)], check=True)
-    res = out / f"geodem{dim}d"
-    wall, rss, _ = time_v([str(exe), "run", str(out / f"settle{dim}d.toml"), "--out", str(res), "--quiet"])
+    res = out / f"geodem{dim}d_t{threads}"
+    wall, rss, _ = time_v([str(exe), "run", str(out / f"settle{dim}d.toml"), "--out", str(res), "--quiet",
+                           "--threads", str(threads)])
     rows = list(csv.DictReader(open(res / "history.csv")))
     at = {int(r["step"]): r for r in rows}
     a = at[settle + 1]
@@ -79,6 +80,8 @@ def main():
     ap.add_argument("--dense", type=int, default=10000)
     ap.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "b2"))
     ap.add_argument("--geodem", default=str(ROOT / "build" / "geodem"))
+    ap.add_argument("--threads", type=int, nargs="+", default=[1],
+                    help="geodem runs once per thread count (ratios against the first)")
     ap.add_argument("--liggghts-results", nargs="+", default=[], metavar="FILE",
                     help="lines printed by run_liggghts.sh earlier on this machine (the run of the "
                          "same N is tabulated instead of running LIGGGHTS again)")
@@ -99,8 +102,11 @@ def main():
                        check=True, capture_output=True)
         results = {}
         for dim in a.dims:
-            results[f"geodem {dim}D"] = run_geodem(a.geodem, n, dim, out, a.settle, a.dense)
-            print(f"geodem {dim}D N={n}: {results[f'geodem {dim}D']}", file=sys.stderr)
+            for t in a.threads:
+                code = f"geodem {dim}D" + (f" {t} threads" if t != 1 else "")
+                results[code] = run_geodem(a.geodem, n, dim, out, a.settle, a.dense, t)
+                results[code]["threads"] = t
+                print(f"{code} N={n}: {results[code]}", file=sys.stderr)
         if n in earlier:
             results["LIGGGHTS 3D"] = earlier[n]
         elif a.with_peers:
@@ -108,8 +114,8 @@ def main():
             print(f"LIGGGHTS N={n}: {results['LIGGGHTS 3D']}", file=sys.stderr)
         rows.append((n, results))
 
-    print("| N | code | wall s | settle Mps/s | dense Mps/s | peak RSS MB | bytes/grain | bed top m | ratio settle | ratio dense | ratio memory |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| N | code | wall s | settle Mps/s | dense Mps/s | peak RSS MB | bytes/grain | bed top m | ratio settle | ratio dense | ratio memory | dense / 1 thread |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for n, results in rows:
         peer = results.get("LIGGGHTS 3D")
         for code, r in results.items():
@@ -117,9 +123,11 @@ def main():
             if peer and code == "geodem 3D":
                 ratio = (f"{r['settle_ps'] / peer['settle_ps']:.2f}", f"{r['dense_ps'] / peer['dense_ps']:.2f}",
                          f"{r['rss_kb'] / peer['rss_kb']:.2f}")
+            one = results.get(code.split(" threads")[0].rsplit(" ", 1)[0] if " threads" in code else code)
+            speedup = f"{r['dense_ps'] / one['dense_ps']:.2f}" if one and "threads" in r else ""
             print(f"| {n} | {code} | {r['wall']:.1f} | {r['settle_ps'] / 1e6:.2f} | {r['dense_ps'] / 1e6:.2f} | "
                   f"{r['rss_kb'] / 1024:.1f} | {r['rss_kb'] * 1024 / n:.0f} | {r['top']:.4f} | "
-                  f"{ratio[0]} | {ratio[1]} | {ratio[2]} |")
+                  f"{ratio[0]} | {ratio[1]} | {ratio[2]} | {speedup} |")
 
 
 if __name__ == "__main__":

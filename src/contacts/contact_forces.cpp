@@ -62,9 +62,12 @@ void add_stats(ContactStats<D>& a, const ContactStats<D>& b) {
 }
 
 // Slab length for n grains: a function of n alone (never of the thread count), long
-// enough that few pairs cross slabs, short enough for 32 slabs to share among threads.
+// enough that few pairs cross slabs and that a slab's work (about 100 us for 1,024
+// grains) dwarfs the cost of handing it to a thread, short enough for 32 slabs to share
+// among threads.
+constexpr std::size_t kMinSlab = 1024;
 inline std::size_t slab_length(std::size_t n) {
-  return std::max<std::size_t>(kParallelMin, (n + 31) / 32);
+  return std::max<std::size_t>(kMinSlab, (n + 31) / 32);
 }
 
 // Runs body(slab, first, last) for every slab, side by side.
@@ -72,7 +75,7 @@ template <int D, typename Body>
 void for_slabs(const World<D>& world, Body&& body) {
   const std::size_t n = world.particles.size(), len = slab_length(n);
   const auto ns = static_cast<std::ptrdiff_t>((n + len - 1) / len);
-  const bool par = world.threads > 1 && ns >= 2;
+  const bool par = world.threads > 1 && ns >= 2 && n >= kParallelMin;
 #pragma omp parallel for num_threads(world.threads) schedule(dynamic, 1) if (par)
   for (std::ptrdiff_t s = 0; s < ns; ++s) {
     const std::size_t first = static_cast<std::size_t>(s) * len;
@@ -80,10 +83,11 @@ void for_slabs(const World<D>& world, Body&& body) {
   }
 }
 
-// Grain-grain contacts. `Extras`: the contacts carry rolling springs and bond states
-// (a separate instantiation, so that plain frictional packings pay nothing for them).
+// Grain-grain contacts of the rows [first, last) (one slab). `Extras`: the contacts carry rolling
+// springs and bond states (a separate instantiation, so that plain frictional packings pay nothing
+// for them).
 template <int D, bool Measure, bool Extras>
-void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
+void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D>& t) {
   using Vec = typename Dim<D>::Vec;
   using Rot = typename Dim<D>::Rot;
   auto& P = world.particles;
@@ -105,9 +109,9 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   ContactExtra<D>* __restrict extra = L.extra.data();
   const PairLaw* pair_laws = world.pair_laws.data();
   const double overlap_limit = world.overlap_limit;
-  auto row = [&](std::size_t i, std::size_t slab_end, SlabTally<D>& t) {
+  for (std::size_t i = first; i < last; ++i) {
     const std::uint32_t b = start[i], e = start[i + 1];
-    if (b == e) return;
+    if (b == e) continue;
     const Vec xi = pos[i];
     const Vec vi = vel[i];
     const Rot wi = angvel[i];
@@ -172,7 +176,7 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
           ti -= m;
         }
       }
-      if (j < slab_end) {
+      if (j < last) {  // same slab
         force[j] += f;
         torque[j] += tj;
       } else {
@@ -188,16 +192,21 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
     }
     force[i] += fi;
     torque[i] += ti;
-  };
+  }
+}
+
+template <int D, bool Measure, bool Extras>
+void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   SlabTally<D>* tally = tallies.data();
   for_slabs(world, [&](std::size_t s, std::size_t first, std::size_t last) {
-    for (std::size_t i = first; i < last; ++i) row(i, last, tally[s]);
+    pair_rows<D, Measure, Extras>(world, first, last, tally[s]);
   });
   // The crossing forces, slab by slab.
+  auto& P = world.particles;
   for (std::size_t s = 0; s < tallies.size(); ++s)
     for (const auto& c : tallies[s].crossing) {
-      force[c.grain] += c.force;
-      torque[c.grain] += c.torque;
+      P.force[c.grain] += c.force;
+      P.torque[c.grain] += c.torque;
     }
 }
 
