@@ -124,7 +124,7 @@ def main():
                 ratio = (f"{r['settle_ps'] / peer['settle_ps']:.2f}", f"{r['dense_ps'] / peer['dense_ps']:.2f}",
                          f"{r['rss_kb'] / peer['rss_kb']:.2f}")
             one = results.get(code.split(" threads")[0].rsplit(" ", 1)[0] if " threads" in code else code)
-            speedup = f"{r['dense_ps'] / one['dense_ps']:.2f}" if one and "threads" in r else ""
+            speedup = f"{r['dense_ps'] / one['dense_ps']:.2f}" if one and r.get("threads", 1) != 1 else ""
             print(f"| {n} | {code} | {r['wall']:.1f} | {r['settle_ps'] / 1e6:.2f} | {r['dense_ps'] / 1e6:.2f} | "
                   f"{r['rss_kb'] / 1024:.1f} | {r['rss_kb'] * 1024 / n:.0f} | {r['top']:.4f} | "
                   f"{ratio[0]} | {ratio[1]} | {ratio[2]} | {speedup} |")

@@ -1,6 +1,7 @@
 // Micro-benchmarks of the step's stages on a dense lattice packing (every grain
 // touches its lattice neighbours): contact forces, neighbour list rebuild,
-// integration, and the whole step. Reports grains per second.
+// integration, and the whole step, on 1 and 2 threads (arguments: grains, threads).
+// Reports grains per second of wall time.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -13,8 +14,9 @@
 namespace {
 
 template <int D>
-geodem::World<D> lattice(std::size_t n_target) {
+geodem::World<D> lattice(std::size_t n_target, std::int64_t threads = 1) {
   geodem::World<D> w;
+  w.threads = static_cast<int>(threads);
   geodem::Material m;
   m.kn = 1e5;
   m.friction = 0.5;
@@ -38,21 +40,21 @@ geodem::World<D> lattice(std::size_t n_target) {
 
 template <int D>
 void BM_ContactForces(benchmark::State& state) {
-  auto w = lattice<D>(static_cast<std::size_t>(state.range(0)));
+  auto w = lattice<D>(static_cast<std::size_t>(state.range(0)), state.range(1));
   for (auto _ : state) geodem::compute_contact_forces(w);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
 }
 
 template <int D>
 void BM_NeighbourBuild(benchmark::State& state) {
-  auto w = lattice<D>(static_cast<std::size_t>(state.range(0)));
+  auto w = lattice<D>(static_cast<std::size_t>(state.range(0)), state.range(1));
   for (auto _ : state) geodem::build_neighbour_list(w);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
 }
 
 template <int D>
 void BM_Integrate(benchmark::State& state) {
-  auto w = lattice<D>(static_cast<std::size_t>(state.range(0)));
+  auto w = lattice<D>(static_cast<std::size_t>(state.range(0)), state.range(1));
   w.local_damping = 0.2;
   for (auto _ : state) geodem::integrate(w);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
@@ -60,19 +62,43 @@ void BM_Integrate(benchmark::State& state) {
 
 template <int D>
 void BM_Step(benchmark::State& state) {
-  auto w = lattice<D>(static_cast<std::size_t>(state.range(0)));
+  auto w = lattice<D>(static_cast<std::size_t>(state.range(0)), state.range(1));
   for (auto _ : state) geodem::step(w);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
 }
 
 }  // namespace
 
-BENCHMARK(BM_ContactForces<3>)->Arg(20000)->Arg(200000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ContactForces<2>)->Arg(20000)->Arg(200000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_NeighbourBuild<3>)->Arg(20000)->Arg(200000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_NeighbourBuild<2>)->Arg(20000)->Arg(200000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Integrate<3>)->Arg(20000)->Arg(200000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Integrate<2>)->Arg(20000)->Arg(200000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Step<3>)->Arg(20000)->Arg(200000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Step<2>)->Arg(20000)->Arg(200000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ContactForces<3>)
+    ->ArgsProduct({{20000, 200000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_ContactForces<2>)
+    ->ArgsProduct({{20000, 200000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_NeighbourBuild<3>)
+    ->ArgsProduct({{20000, 200000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_NeighbourBuild<2>)
+    ->ArgsProduct({{20000, 200000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Integrate<3>)
+    ->ArgsProduct({{20000, 200000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Integrate<2>)
+    ->ArgsProduct({{20000, 200000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Step<3>)
+    ->ArgsProduct({{20000, 200000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Step<2>)
+    ->ArgsProduct({{20000, 200000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_MAIN();
