@@ -139,6 +139,31 @@ class CliTest(unittest.TestCase):
             self.assertTrue((out / "wall_forces.png").exists())
             self.assertFalse(list(out.glob("**/*.tmp")))
 
+    def test_threads_give_the_same_history(self):
+        # 6,000 grains falling into a bed: enough for the step to run on several threads
+        # (docs/performance.md); the histories must agree to the last digit.
+        text = scene(3).replace("count = 50", "count = 6000").replace("radius = 0.004", "radius = 0.002")
+        path = self.write(text)
+        histories = {}
+        for threads in (1, 2):
+            out = self.dir / f"t{threads}"
+            env = dict(os.environ, GEODEM_THREADS=str(threads))
+            r = subprocess.run([GEODEM, "run", path, "--out", str(out), "--quiet",
+                                "--set", "time.duration=0.2", "--set", "output.history_every=100"],
+                               capture_output=True, text=True, timeout=300, env=env)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            s = json.loads((out / "summary.json").read_text())
+            self.assertEqual(s["timing"]["threads"], threads)  # from GEODEM_THREADS
+            self.assertEqual(s["results"]["particles"], 6000)
+            with open(out / "history.csv") as f:
+                rows = list(csv.reader(f))
+            wall = rows[0].index("wall_s")
+            histories[threads] = [r[:wall] + r[wall + 1:] for r in rows]
+        self.assertGreater(len(histories[1]), 10)
+        contacts = histories[1][0].index("contacts")
+        self.assertGreater(int(histories[1][-1][contacts]), 5000)  # a bed has formed
+        self.assertEqual(histories[1], histories[2])
+
     def test_set_overrides(self):
         out = self.dir / "out"
         r = run("run", self.write(scene(2)), "--out", str(out), "--quiet",
