@@ -6,18 +6,19 @@
 #include <limits>
 #include <numbers>
 
+#include "core/parallel.hpp"
+
 namespace geodem {
 
 // Bodies are the grains that are not clump members, and the clumps.
 template <int D>
 double kinetic_energy(const World<D>& world) {
   const auto& P = world.particles;
-  double e = 0.0;
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    if (P.inv_mass[i] == 0.0 || P.member(i)) continue;
-    e += 0.5 * P.vel[i].squaredNorm() / P.inv_mass[i] +
-         0.5 * Dim<D>::rot_norm2(P.angvel[i]) / P.inv_inertia[i];
-  }
+  double e = ordered_sum(P.size(), world.threads, 0.0, [&](std::size_t i) {
+    if (P.inv_mass[i] == 0.0 || P.member(i)) return 0.0;
+    return 0.5 * P.vel[i].squaredNorm() / P.inv_mass[i] +
+           0.5 * Dim<D>::rot_norm2(P.angvel[i]) / P.inv_inertia[i];
+  });
   const auto& C = world.clumps;
   for (std::size_t c = 0; c < C.size(); ++c) {
     e += 0.5 * C.vel[c].squaredNorm() / C.inv_mass[c];
@@ -32,9 +33,9 @@ double kinetic_energy(const World<D>& world) {
 template <int D>
 double gravity_energy(const World<D>& world) {
   const auto& P = world.particles;
-  double e = 0.0;
-  for (std::size_t i = 0; i < P.size(); ++i)
-    if (P.inv_mass[i] > 0.0 && !P.member(i)) e -= P.pos[i].dot(world.gravity) / P.inv_mass[i];
+  double e = -ordered_sum(P.size(), world.threads, 0.0, [&](std::size_t i) {
+    return P.inv_mass[i] > 0.0 && !P.member(i) ? P.pos[i].dot(world.gravity) / P.inv_mass[i] : 0.0;
+  });
   const auto& C = world.clumps;
   for (std::size_t c = 0; c < C.size(); ++c) e -= C.pos[c].dot(world.gravity) / C.inv_mass[c];
   return e;
@@ -53,9 +54,9 @@ double body_weight(const World<D>& world) {
 template <int D>
 double solid_volume(const World<D>& world) {
   const auto& P = world.particles;
-  double v = 0.0;
-  for (std::size_t i = 0; i < P.size(); ++i)
-    if (!P.member(i)) v += Dim<D>::volume(P.radius[i]);
+  double v = ordered_sum(P.size(), world.threads, 0.0, [&](std::size_t i) {
+    return P.member(i) ? 0.0 : Dim<D>::volume(P.radius[i]);
+  });
   for (double cv : world.clumps.volume) v += cv;
   return v;
 }
@@ -73,13 +74,13 @@ double unbalanced_force_ratio(const World<D>& world) {
   const std::size_t nc =
       world.stats.contacts + world.stats.wall_contacts + world.stats.spar_contacts;
   if (nc == 0 || world.stats.sum_force <= 0.0) return std::numeric_limits<double>::quiet_NaN();
-  double sum = 0.0;
-  std::size_t nfree = 0;
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    if (P.inv_mass[i] == 0.0 || !P.free_body(i)) continue;  // fixed, held or clump member
-    sum += (P.force[i] + world.gravity / P.inv_mass[i]).norm();
-    ++nfree;
-  }
+  // Fixed and held grains and clump members do not count.
+  auto counts = [&](std::size_t i) { return P.inv_mass[i] != 0.0 && P.free_body(i); };
+  double sum = ordered_sum(P.size(), world.threads, 0.0, [&](std::size_t i) {
+    return counts(i) ? (P.force[i] + world.gravity / P.inv_mass[i]).norm() : 0.0;
+  });
+  std::size_t nfree = ordered_sum(P.size(), world.threads, std::size_t{0},
+                                  [&](std::size_t i) -> std::size_t { return counts(i) ? 1 : 0; });
   const auto& C = world.clumps;  // resultants summed at the last integration
   for (std::size_t c = 0; c < C.size(); ++c) {
     if (!C.held.empty() && C.held[c]) continue;
