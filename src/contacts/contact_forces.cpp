@@ -23,14 +23,6 @@ namespace geodem {
 
 namespace {
 
-// A force and torque from a row of one slab on a grain of a later slab.
-template <int D>
-struct CrossingForce {
-  typename Dim<D>::Vec force;
-  typename Dim<D>::Rot torque;
-  std::uint32_t grain;
-};
-
 // What one slab adds to the world's sums.
 template <int D>
 struct SlabTally {
@@ -41,7 +33,6 @@ struct SlabTally {
   double overlap_ratio = 0.0;
   std::vector<Vec> wall_force;  // per wall
   std::vector<double> wall_stiffness;
-  std::vector<CrossingForce<D>> crossing;
 
   void note_overlap(std::size_t i, std::int64_t partner, double ratio) {
     if (overlap_offender >= 0) return;
@@ -61,33 +52,18 @@ void add_stats(ContactStats<D>& a, const ContactStats<D>& b) {
   a.elastic_energy += b.elastic_energy;
 }
 
-// Slab length for n grains: a function of n alone (never of the thread count), long
-// enough that few pairs cross slabs and that a slab's work (about 100 us for 1,024
-// grains) dwarfs the cost of handing it to a thread, short enough for 32 slabs to share
-// among threads.
-constexpr std::size_t kMinSlab = 1024;
-inline std::size_t slab_length(std::size_t n) {
-  return std::max<std::size_t>(kMinSlab, (n + 31) / 32);
-}
-
-// Runs body(slab, first, last) for every slab, side by side.
+// Runs body(slab, first, last) for every slab of the world's grains, side by side.
 template <int D, typename Body>
-void for_slabs(const World<D>& world, Body&& body) {
-  const std::size_t n = world.particles.size(), len = slab_length(n);
-  const auto ns = static_cast<std::ptrdiff_t>((n + len - 1) / len);
-  const bool par = world.threads > 1 && ns >= 2 && n >= kParallelMin;
-#pragma omp parallel for num_threads(world.threads) schedule(dynamic, 1) if (par)
-  for (std::ptrdiff_t s = 0; s < ns; ++s) {
-    const std::size_t first = static_cast<std::size_t>(s) * len;
-    body(static_cast<std::size_t>(s), first, std::min(n, first + len));
-  }
+void for_world_slabs(const World<D>& world, Body&& body) {
+  for_slabs(world.particles.size(), world.threads, body);
 }
 
 // Grain-grain contacts of the rows [first, last) (one slab). `Extras`: the contacts carry rolling
 // springs and bond states (a separate instantiation, so that plain frictional packings pay nothing
 // for them).
 template <int D, bool Measure, bool Extras>
-void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D>& t) {
+void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D>& t,
+               std::vector<SlabCrossing<D>>& crossing) {
   using Vec = typename Dim<D>::Vec;
   using Rot = typename Dim<D>::Rot;
   auto& P = world.particles;
@@ -180,7 +156,7 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
         force[j] += f;
         torque[j] += tj;
       } else {
-        t.crossing.push_back({f, tj, j});
+        crossing.push_back({f, tj, j});
       }
       if constexpr (Measure) {
         t.stats.fabric_stress += d * f.transpose();
@@ -198,15 +174,17 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
 template <int D, bool Measure, bool Extras>
 void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   SlabTally<D>* tally = tallies.data();
-  for_slabs(world, [&](std::size_t s, std::size_t first, std::size_t last) {
-    pair_rows<D, Measure, Extras>(world, first, last, tally[s]);
+  auto* crossing = world.slab_crossing.data();
+  for_world_slabs(world, [&](std::size_t s, std::size_t first, std::size_t last) {
+    crossing[s].clear();
+    pair_rows<D, Measure, Extras>(world, first, last, tally[s], crossing[s]);
   });
   // The crossing forces, slab by slab.
   auto& P = world.particles;
-  for (std::size_t s = 0; s < tallies.size(); ++s)
-    for (const auto& c : tallies[s].crossing) {
-      P.force[c.grain] += c.force;
-      P.torque[c.grain] += c.torque;
+  for (std::size_t s = 0; s < slab_count(P.size()); ++s)
+    for (const auto& c : crossing[s]) {
+      P.force[c.body] += c.a;
+      P.torque[c.body] += c.b;
     }
 }
 
@@ -277,7 +255,7 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
     }
   };
   SlabTally<D>* tally = tallies.data();
-  for_slabs(world, [&](std::size_t s, std::size_t first, std::size_t last) {
+  for_world_slabs(world, [&](std::size_t s, std::size_t first, std::size_t last) {
     for (std::size_t i = first; i < last; ++i) row(i, tally[s]);
   });
 }
@@ -289,14 +267,12 @@ void compute_contact_forces(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   // Per-slab sums, kept between steps so that the step allocates nothing.
   static thread_local std::vector<SlabTally<D>> tallies;
-  const std::size_t n = world.particles.size(), len = slab_length(n);
-  const std::size_t slabs = (n + len - 1) / len;
+  const std::size_t slabs = slab_count(world.particles.size());
   const std::size_t nw = world.walls.size();
   if (tallies.size() < slabs) tallies.resize(slabs);
-  for (std::size_t s = slabs; s < tallies.size(); ++s) tallies[s].crossing.clear();
+  if (world.slab_crossing.size() < slabs) world.slab_crossing.resize(slabs);
   for (std::size_t s = 0; s < slabs; ++s) {
     auto& t = tallies[s];
-    t.crossing.clear();
     t.stats = ContactStats<D>{};
     t.broken_bonds = 0;
     t.overlap_offender = -1;

@@ -7,6 +7,7 @@
 // (tests/unit/thread_determinism_test.cpp).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -45,6 +46,32 @@ T ordered_sum(std::size_t n, int threads, const T& zero, Term&& term) {
   T total = zero;
   for (std::size_t b = 0; b < blocks; ++b) total += part[b];
   return total;
+}
+
+// Slabs: fixed ranges of grain indices that stages writing to both grains of a pair run
+// side by side (contacts/contact_forces.cpp). Their length depends on the grain count
+// alone, never on the thread count: long enough that few pairs cross slabs and that a
+// slab's work (about 100 us for 1,024 grains) dwarfs the cost of handing it to a thread,
+// short enough for 32 slabs to share among threads.
+constexpr std::size_t kMinSlab = 1024;
+inline std::size_t slab_length(std::size_t n) {
+  return std::max<std::size_t>(kMinSlab, (n + 31) / 32);
+}
+inline std::size_t slab_count(std::size_t n) {
+  return (n + slab_length(n) - 1) / slab_length(n);
+}
+
+// Runs body(slab, first, last) for every slab of n grains, side by side.
+template <typename Body>
+void for_slabs(std::size_t n, int threads, Body&& body) {
+  const std::size_t len = slab_length(n);
+  const auto ns = static_cast<std::ptrdiff_t>(slab_count(n));
+  const bool par = threads > 1 && ns >= 2 && n >= kParallelMin;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (par)
+  for (std::ptrdiff_t s = 0; s < ns; ++s) {
+    const std::size_t first = static_cast<std::size_t>(s) * len;
+    body(static_cast<std::size_t>(s), first, std::min(n, first + len));
+  }
 }
 
 // Threads of a run when none is asked for: GEODEM_THREADS, else OMP_NUM_THREADS, else 1

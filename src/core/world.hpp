@@ -56,6 +56,16 @@ struct ContactStats {
   double elastic_energy = 0.0;    // normal springs only (exact for frictionless linear law)
 };
 
+// A contribution computed in one slab of grains for a body outside it (a force and a
+// torque, or a stiffness): kept per slab and added afterwards in slab order, so that sums
+// do not depend on the thread count (core/parallel.hpp).
+template <int D>
+struct SlabCrossing {
+  typename Dim<D>::Vec a;
+  typename Dim<D>::Rot b;
+  std::uint32_t body;
+};
+
 template <int D>
 struct World {
   using Vec = typename Dim<D>::Vec;
@@ -86,6 +96,9 @@ struct World {
   int sort_interval = 0;
   // Threads of the step's loops (core/parallel.hpp); results do not depend on it.
   int threads = 1;
+  // Per-slab crossing contributions of the force stage and the automatic time step,
+  // kept between steps so that the step allocates nothing (scratch, not state).
+  mutable std::vector<std::vector<SlabCrossing<D>>> slab_crossing;
 
   double time = 0.0;
   std::uint64_t step = 0;

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "contacts/contact_law.hpp"
+#include "core/parallel.hpp"
 #include "structures/spar_dynamics.hpp"
 #include "structures/spar_geometry.hpp"
 
@@ -29,19 +30,27 @@ struct DiagonalStiffness {
     trans.assign(n, Vec::Zero());
     rot.assign(n, Dim<D>::zero_rot());
   }
-  // kr: rolling spring (about the tangent axes); ktw: twisting spring (about n, 3D).
-  void add(std::size_t b, const Vec& n, double kn, double kt, const Vec& lever, double kr,
-           double ktw) {
+  // One contact's share. kr: rolling spring (about the tangent axes); ktw: twisting spring
+  // (about n, 3D).
+  static SlabCrossing<D> share(std::size_t b, const Vec& n, double kn, double kt, const Vec& lever,
+                               double kr, double ktw) {
+    SlabCrossing<D> c;
+    c.body = static_cast<std::uint32_t>(b);
     const Vec n2 = n.cwiseProduct(n);
-    trans[b] += Vec::Constant(kt) + (kn - kt) * n2;
+    c.a = Vec::Constant(kt) + (kn - kt) * n2;
     const auto ln = Dim<D>::cross(lever, n);
     if constexpr (D == 2) {
       (void)ktw;
-      rot[b] += kt * lever.squaredNorm() + (kn - kt) * ln * ln + kr;
+      c.b = kt * lever.squaredNorm() + (kn - kt) * ln * ln + kr;
     } else {
-      rot[b] += kt * (Vec::Constant(lever.squaredNorm()) - lever.cwiseProduct(lever)) +
-                (kn - kt) * ln.cwiseProduct(ln) + kr * (Vec::Ones() - n2) + ktw * n2;
+      c.b = kt * (Vec::Constant(lever.squaredNorm()) - lever.cwiseProduct(lever)) +
+            (kn - kt) * ln.cwiseProduct(ln) + kr * (Vec::Ones() - n2) + ktw * n2;
     }
+    return c;
+  }
+  void add(const SlabCrossing<D>& c) {
+    trans[c.body] += c.a;
+    rot[c.body] += c.b;
   }
   double max_trans(std::size_t i) const { return trans[i].maxCoeff(); }
   double max_rot(std::size_t i) const {
@@ -61,7 +70,9 @@ double critical_timestep(const World<D>& world) {
   const auto& P = world.particles;
   const auto& L = world.nlist;
   const std::size_t n = P.size();
-  static thread_local DiagonalStiffness<D> K;
+  // Scratch of the calling thread, reached by reference inside the parallel region.
+  static thread_local DiagonalStiffness<D> stiffness;
+  DiagonalStiffness<D>& K = stiffness;
   const auto& C = world.clumps;
   K.reset(n + C.size());
   // The body a grain's contacts load, and the lever from its centre to a contact point.
@@ -74,70 +85,100 @@ double critical_timestep(const World<D>& world) {
 
   const bool have_list = L.start.size() == n + 1;
   const bool extras = L.extra.size() == L.other.size() && !L.extra.empty();
-  for (std::size_t i = 0; have_list && i < n; ++i) {
-    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
-      const std::uint32_t j = L.other[k];
-      const double rs = P.radius[i] + P.radius[j];
-      const Vec d = P.pos[j] - P.pos[i];
-      const double dist = d.norm();
-      // A bonded pair pulled apart still has its springs.
-      const bool bonded = extras && L.extra[k].bonded;
-      if ((dist >= rs && !bonded) || dist <= 0.0) continue;
-      const PairLaw& law = world.pair_law(P.material[i], P.material[j]);
-      const double delta = rs - dist;
-      const NormalResult nr = normal_force(law, P.radius[i], P.radius[j], 0.0, delta, 0.0);
-      const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[j])
-                                                    : 1.5 * nr.fn / delta;  // dF/d(delta)
-      const Vec nrm = d / dist;
-      const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], P.radius[j]);
-      const double kr = law.roll_mu > 0.0 ? k_roll : 0.0, ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
-      K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
-      K.add(body(j), nrm, kn, nr.kt, lever(j, -nrm), kr, ktw);
-    }
-    for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
-      const auto& w = world.walls[L.wall[k]];
-      Vec q;
-      if (!wall_closest(w, P.pos[i], q)) continue;
-      const Vec d = q - P.pos[i];
-      const double gap = w.kind == WallKind::kPlane ? (P.pos[i] - w.point).dot(w.normal) : d.norm();
-      const double delta = P.radius[i] - gap;
-      // A centre exactly on a segment has no normal: the force stage skips it too.
-      if (delta <= 0.0 || (w.kind != WallKind::kPlane && gap <= 0.0)) continue;
-      const Vec nrm = w.kind == WallKind::kPlane ? Vec(-w.normal) : Vec(d / gap);
-      const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
-      const NormalResult nr =
-          normal_force(law, P.radius[i], wall_partner_radius(law, P.radius[i]), 0.0, delta, 0.0);
-      const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i])
-                                                    : 1.5 * nr.fn / delta;
-      const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], kWallRadius);
-      const double kr = law.roll_mu > 0.0 ? k_roll : 0.0, ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
-      K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
-    }
-    if (L.spar_start.size() != n + 1) continue;
-    const auto& S = world.spars;
-    for (std::uint32_t k = L.spar_start[i]; k < L.spar_start[i + 1]; ++k) {
-      const std::size_t e = L.spar[k];
-      const SparPoint<D> p = spar_point(S, e, P.pos[i]);
-      const Vec d = p.closest - P.pos[i];
-      const double dist = d.norm();
-      if (p.region != SparRegion::kOwned || dist <= 0.0 ||
-          dist >= P.radius[i] + S.half_thickness[e])
-        continue;
-      const PairLaw& law = world.pair_law(P.material[i], S.material[e]);
-      const double delta = P.radius[i] + S.half_thickness[e] - dist;
-      const NormalResult nr =
-          normal_force(law, P.radius[i], wall_partner_radius(law, P.radius[i]), 0.0, delta, 0.0);
-      const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i])
-                                                    : 1.5 * nr.fn / delta;
-      const Vec nrm = d / dist;
-      K.add(body(i), nrm, kn, nr.kt, lever(i, nrm), 0.0, 0.0);
-    }
-  }
+  // Slabs side by side, as in the force stage (contacts/contact_forces.cpp): a share for a
+  // body outside the slab (a grain of a later slab, a clump) is added afterwards, in slab
+  // order, so that the sums, and dt, do not depend on the thread count.
+  const std::size_t slabs = have_list ? slab_count(n) : 0;
+  if (world.slab_crossing.size() < slabs) world.slab_crossing.resize(slabs);
+  auto* crossing = world.slab_crossing.data();
+  for_slabs(
+      have_list ? n : 0, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
+        auto& out = crossing[s];
+        out.clear();
+        auto add = [&](std::size_t b, const Vec& nrm, double kn, double kt, const Vec& l, double kr,
+                       double ktw) {
+          const SlabCrossing<D> c = DiagonalStiffness<D>::share(b, nrm, kn, kt, l, kr, ktw);
+          if (b >= first && b < last) {
+            K.add(c);
+          } else {
+            out.push_back(c);
+          }
+        };
+        for (std::size_t i = first; i < last; ++i) {
+          for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+            const std::uint32_t j = L.other[k];
+            const double rs = P.radius[i] + P.radius[j];
+            const Vec d = P.pos[j] - P.pos[i];
+            const double dist = d.norm();
+            // A bonded pair pulled apart still has its springs.
+            const bool bonded = extras && L.extra[k].bonded;
+            if ((dist >= rs && !bonded) || dist <= 0.0) continue;
+            const PairLaw& law = world.pair_law(P.material[i], P.material[j]);
+            const double delta = rs - dist;
+            const NormalResult nr = normal_force(law, P.radius[i], P.radius[j], 0.0, delta, 0.0);
+            const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[j])
+                                                          : 1.5 * nr.fn / delta;  // dF/d(delta)
+            const Vec nrm = d / dist;
+            const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], P.radius[j]);
+            const double kr = law.roll_mu > 0.0 ? k_roll : 0.0,
+                         ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
+            add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
+            add(body(j), nrm, kn, nr.kt, lever(j, -nrm), kr, ktw);
+          }
+          for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
+            const auto& w = world.walls[L.wall[k]];
+            Vec q;
+            if (!wall_closest(w, P.pos[i], q)) continue;
+            const Vec d = q - P.pos[i];
+            const double gap =
+                w.kind == WallKind::kPlane ? (P.pos[i] - w.point).dot(w.normal) : d.norm();
+            const double delta = P.radius[i] - gap;
+            // A centre exactly on a segment has no normal: the force stage skips it too.
+            if (delta <= 0.0 || (w.kind != WallKind::kPlane && gap <= 0.0)) continue;
+            const Vec nrm = w.kind == WallKind::kPlane ? Vec(-w.normal) : Vec(d / gap);
+            const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
+            const NormalResult nr = normal_force(
+                law, P.radius[i], wall_partner_radius(law, P.radius[i]), 0.0, delta, 0.0);
+            const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i])
+                                                          : 1.5 * nr.fn / delta;
+            const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], kWallRadius);
+            const double kr = law.roll_mu > 0.0 ? k_roll : 0.0,
+                         ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
+            add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
+          }
+          if (L.spar_start.size() != n + 1) continue;
+          const auto& S = world.spars;
+          for (std::uint32_t k = L.spar_start[i]; k < L.spar_start[i + 1]; ++k) {
+            const std::size_t e = L.spar[k];
+            const SparPoint<D> p = spar_point(S, e, P.pos[i]);
+            const Vec d = p.closest - P.pos[i];
+            const double dist = d.norm();
+            if (p.region != SparRegion::kOwned || dist <= 0.0 ||
+                dist >= P.radius[i] + S.half_thickness[e])
+              continue;
+            const PairLaw& law = world.pair_law(P.material[i], S.material[e]);
+            const double delta = P.radius[i] + S.half_thickness[e] - dist;
+            const NormalResult nr = normal_force(
+                law, P.radius[i], wall_partner_radius(law, P.radius[i]), 0.0, delta, 0.0);
+            const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i])
+                                                          : 1.5 * nr.fn / delta;
+            const Vec nrm = d / dist;
+            add(body(i), nrm, kn, nr.kt, lever(i, nrm), 0.0, 0.0);
+          }
+        }
+      });
+  for (std::size_t s = 0; s < slabs; ++s)
+    for (const auto& c : crossing[s]) K.add(c);
 
   // dt^2 = 2 x the smallest of m/K_t and I/K_r (the sqrt(2) of yade: the critical
   // step of a grain on a spring whose other end moves in antiphase).
-  double dt2 = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < n; ++i) {
+  double dt2 = std::numeric_limits<double>::infinity();  // a minimum: the same in any order
+  const auto grains = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for num_threads(world.threads) schedule(static) \
+    reduction(min                                                    \
+              : dt2) if (world.threads > 1 && n >= kParallelMin)
+  for (std::ptrdiff_t ii = 0; ii < grains; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
     if (P.inv_mass[i] == 0.0) continue;
     const double m = 1.0 / P.inv_mass[i], inertia = 1.0 / P.inv_inertia[i];
     const auto& mat = world.materials[P.material[i]];
