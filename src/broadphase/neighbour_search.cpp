@@ -200,18 +200,19 @@ void build_neighbour_list(World<D>& world) {
   const std::size_t n = P.size();
   L.skin = skin_length(world);
 
-  // Keep the old rows to merge their history.
-  // Scratch kept between builds, one per calling thread (the runs of a study are threads).
-  // Parallel regions below reach it through the references, never by the variable's
-  // name, which would name each OpenMP thread's own instance.
-  static thread_local NeighbourList<D> old_rows;
-  NeighbourList<D>& old = old_rows;
+  // Peak memory: during a build the old rows (for their history) and the new ones are both
+  // resident. The force stage's crossing scratch is released first so that it does not add
+  // to that peak (it grows back in one step), and the old rows go when the build ends.
+  for (auto& c : world.slab_crossing) std::vector<SlabCrossing<D>>().swap(c);
+  NeighbourList<D> old;
   old.swap_rows(L);
   const bool have_old = old.start.size() == n + 1;
 
   auto reset_rows = [&] {
     L.start.assign(n + 1, 0);
     L.other.clear();
+    // Room for about as many pairs as before: appending then never doubles the array.
+    L.other.reserve(old.other.size() + old.other.size() / 8 + 16);
     L.spring.clear();
     L.wall_start.assign(n + 1, 0);
     L.wall.clear();
