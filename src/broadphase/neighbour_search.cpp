@@ -243,6 +243,8 @@ void build_neighbour_list(World<D>& world) {
       if (cells <= max_cells) break;
       cell *= 1.25;
     }
+    // Kept between builds, one per calling thread (a study's runs are threads). Parallel
+    // regions reach it through `g`: by its own name each OpenMP thread would see its own.
     static thread_local Grid<D> grid;
     Grid<D>& g = grid;
     g.lo = lo;
