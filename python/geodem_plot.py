@@ -717,6 +717,12 @@ def plot_calibrate(out, summary, h=None):
         ax.set_xlabel("iteration")
         ax.grid(alpha=0.3)
 
+    def iteration_axis(ax):  # search iterations only
+        ax.set_xticks(shown)
+        ax.set_xlim(-0.5, max(n - 0.5, 0.5))
+        ax.set_xlabel("iteration")
+        ax.grid(alpha=0.3, which="both")
+
     checks = verification.get("checks") or {}
     for ax, key in zip(axes, keys):
         label, factor, unit, ylabel = quantity_info(key)
@@ -775,10 +781,7 @@ def plot_calibrate(out, summary, h=None):
         ax.set_yscale("log")
         ax.set_ylabel("relative to the first (non-zero) value (-)")
         ax.set_title("Micro parameters", fontsize=10)
-        ax.set_xticks(shown)
-        ax.set_xlim(-0.5, max(n - 0.5, 0.5))
-        ax.set_xlabel("iteration")
-        ax.grid(alpha=0.3, which="both")
+        iteration_axis(ax)
         ax.legend(fontsize=6)
     if np.isfinite(misses).any():
         ax = axes[k]
@@ -788,10 +791,7 @@ def plot_calibrate(out, summary, h=None):
             ax.set_yscale("log")
         ax.set_ylabel("miss (search objective, -)")
         ax.set_title("Distance to the targets", fontsize=10)
-        ax.set_xticks(shown)
-        ax.set_xlim(-0.5, max(n - 0.5, 0.5))
-        ax.set_xlabel("iteration")
-        ax.grid(alpha=0.3, which="both")
+        iteration_axis(ax)
     state = "converged" if results.get("converged") else "not converged"
     if verification:
         state += ", verification " + ("met" if verification.get("all_met") else "not met")

@@ -52,12 +52,6 @@ void add_stats(ContactStats<D>& a, const ContactStats<D>& b) {
   a.elastic_energy += b.elastic_energy;
 }
 
-// Runs body(slab, first, last) for every slab of the world's grains, side by side.
-template <int D, typename Body>
-void for_world_slabs(const World<D>& world, Body&& body) {
-  for_slabs(world.particles.size(), world.threads, body);
-}
-
 // Grain-grain contacts of the rows [first, last) (one slab). `Extras`: the contacts carry rolling
 // springs and bond states (a separate instantiation, so that plain frictional packings pay nothing
 // for them).
@@ -175,10 +169,11 @@ template <int D, bool Measure, bool Extras>
 void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   SlabTally<D>* tally = tallies.data();
   auto* crossing = world.slab_crossing.data();
-  for_world_slabs(world, [&](std::size_t s, std::size_t first, std::size_t last) {
-    crossing[s].clear();
-    pair_rows<D, Measure, Extras>(world, first, last, tally[s], crossing[s]);
-  });
+  for_slabs(world.particles.size(), world.threads,
+            [&](std::size_t s, std::size_t first, std::size_t last) {
+              crossing[s].clear();
+              pair_rows<D, Measure, Extras>(world, first, last, tally[s], crossing[s]);
+            });
   // The crossing forces, slab by slab.
   auto& P = world.particles;
   for (std::size_t s = 0; s < slab_count(P.size()); ++s)
@@ -255,9 +250,10 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
     }
   };
   SlabTally<D>* tally = tallies.data();
-  for_world_slabs(world, [&](std::size_t s, std::size_t first, std::size_t last) {
-    for (std::size_t i = first; i < last; ++i) row(i, tally[s]);
-  });
+  for_slabs(world.particles.size(), world.threads,
+            [&](std::size_t s, std::size_t first, std::size_t last) {
+              for (std::size_t i = first; i < last; ++i) row(i, tally[s]);
+            });
 }
 
 }  // namespace
