@@ -3,7 +3,7 @@
 # Usage: scripts/install-deps.sh [--with-peers]   (peers: LIGGGHTS and yade, for benchmarks)
 set -euo pipefail
 packages=(g++ cmake ninja-build libeigen3-dev libtomlplusplus-dev libcli11-dev
-          nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
+          nlohmann-json3-dev zlib1g-dev libgtest-dev libgmock-dev libbenchmark-dev
           python3 python3-numpy python3-matplotlib clang-format
           libopenmpi-dev openmpi-bin)
 if [[ "${1:-}" == "--with-peers" ]]; then packages+=(liggghts yade); fi

@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "io/interrupt.hpp"
 #include "io/material_file.hpp"
 #include "io/run_output.hpp"
 #include "io/toml_reader.hpp"
@@ -120,7 +121,7 @@ int run_main(int argc, char** argv) {
                                         (geodem::comm::built_with_mpi() ? " (MPI)" : ""));
   app.require_subcommand(1);
 
-  std::string scenario, out_dir = "out", plot_dir;
+  std::string scenario, out_dir = "out", plot_dir, resume_dir;
   std::vector<std::string> overrides;
   int threads = geodem::default_threads();
   bool quiet = false;
@@ -135,6 +136,9 @@ int run_main(int argc, char** argv) {
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
   run->add_flag("--quiet", quiet, "no progress display");
+  run->add_option("--resume", resume_dir,
+                  "continue the run whose output folder is DIR from its newest valid checkpoint "
+                  "(scene kind; outputs stay in DIR)");
 
   auto* check = app.add_subcommand("check", "validate a scenario without running it");
   check->add_option("scenario", scenario, "scenario file (TOML)")->required();
@@ -164,6 +168,17 @@ int run_main(int argc, char** argv) {
     opt.out_dir = out_dir;
     opt.quiet = quiet;
     opt.threads = threads;
+    if (!resume_dir.empty()) {
+      if (run->count("--out") && out_dir != resume_dir)
+        throw geodem::InputError("", 0, "--out",
+                                 "a resumed run writes to its own folder; give --resume DIR alone");
+      if (l.kind != "scene")
+        throw geodem::InputError(scenario, 0, "kind",
+                                 "--resume: only scene runs write checkpoints so far; a study "
+                                 "resumes by rerunning it into the same folder");
+      opt.out_dir = out_dir = resume_dir;
+      opt.resume = true;
+    }
     if (l.kind == "series" || l.kind == "rate_study" || l.kind == "calibrate")
       return run_study(l, scenario, check->parsed(), opt);
     if (geodem::comm::size() > 1)
@@ -210,6 +225,8 @@ int run_main(int argc, char** argv) {
                   s.dimension);
       return kOk;
     }
+    // Scene runs stop on SIGINT/SIGTERM after the step in progress, with a checkpoint.
+    geodem::install_interrupt_handlers();
     const auto summary = geodem::run_scene(s, opt);
     if (s.output.plots) geodem::make_plots(out_dir, quiet);
     if (!quiet)
@@ -220,6 +237,12 @@ int run_main(int argc, char** argv) {
   } catch (const geodem::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kBadInput;
+  } catch (const geodem::Interrupted& i) {
+    std::fprintf(stderr,
+                 "interrupted by signal %d: outputs so far are in %s%s%s\n", i.signal,
+                 out_dir.c_str(), i.checkpoint.empty() ? "" : "; continue with --resume ",
+                 i.checkpoint.empty() ? "" : out_dir.c_str());
+    return 128 + i.signal;
   } catch (const geodem::InstabilityError& e) {
     std::fprintf(stderr, "unstable: %s\nthe outputs written so far are in %s\n", e.what(),
                  out_dir.c_str());

@@ -1,6 +1,8 @@
 #include "io/output_files.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <cstdlib>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -35,6 +37,34 @@ void HistoryCsv::open(const std::string& path, const std::vector<std::string>& c
   for (std::size_t k = 0; k < columns.size(); ++k) out_ << (k ? "," : "") << columns[k];
   out_ << '\n';
   out_.flush();
+}
+
+void HistoryCsv::resume(const std::string& path, const std::vector<std::string>& columns,
+                        double last_step) {
+  std::string header;
+  for (std::size_t k = 0; k < columns.size(); ++k) header += (k ? "," : "") + columns[k];
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot resume: " + path + " is missing");
+  std::string line, kept;
+  if (!std::getline(in, line) || line != header)
+    throw std::runtime_error("cannot resume: " + path + " has another header than this run's");
+  kept = header + '\n';
+  std::size_t rows = 0;
+  // A row is whole when it ends in a newline and has every column.
+  while (std::getline(in, line) && !in.eof()) {
+    if (static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1 != columns.size())
+      break;
+    const double step = std::strtod(line.c_str(), nullptr);
+    if (!(step <= last_step)) break;
+    kept += line + '\n';
+    ++rows;
+  }
+  in.close();
+  write_file_atomic(path, kept);
+  out_.open(path, std::ios::app);
+  if (!out_) throw std::runtime_error("cannot write " + path);
+  columns_ = columns.size();
+  rows_ = rows;
 }
 
 void HistoryCsv::row(const std::vector<double>& values) {

@@ -91,6 +91,37 @@ void VtkSeries<D>::write(const World<D>& world) {
   ++count_;
 }
 
+template <int D>
+void VtkSeries<D>::save(StateWriter& out) const {
+  out(count_);
+  const auto& e = pvd_.entries();
+  out(static_cast<std::uint64_t>(e.size()));
+  for (const auto& x : e) out(x.time), out(x.file), out(x.part);
+}
+
+template <int D>
+void VtkSeries<D>::restore(StateReader& in) {
+  in(count_);
+  std::uint64_t n = 0;
+  in(n);
+  if (n > in.left()) throw CheckpointError("VTK index beyond the data");
+  auto& e = pvd_.entries();
+  e.assign(n, {});
+  for (auto& x : e) in(x.time), in(x.file), in(x.part);
+  // Frames numbered count_ and above were written after the checkpoint.
+  std::error_code ec;
+  for (const auto& f : std::filesystem::directory_iterator(dir_ + "/vtk", ec)) {
+    const std::string name = f.path().filename().string();
+    const auto us = name.rfind('_'), dot = name.rfind('.');
+    if (us == std::string::npos || dot == std::string::npos || dot < us + 2) continue;
+    const std::string digits = name.substr(us + 1, dot - us - 1);
+    if (digits.size() > 12 || digits.find_first_not_of("0123456789") != std::string::npos)
+      continue;
+    if (std::stoll(digits) >= count_) std::filesystem::remove(f.path(), ec);
+  }
+  pvd_.write();
+}
+
 bool make_plots(const std::string& dir, bool quiet) {
   const char* env = std::getenv("GEODEM_PYTHON");
   std::string python =

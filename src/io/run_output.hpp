@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/world.hpp"
+#include "io/state_archive.hpp"
 #include "io/vtk_writer.hpp"
 
 namespace geodem {
@@ -14,6 +15,7 @@ struct RunOptions {
   std::string out_dir = "out";
   bool quiet = false;
   int threads = 1;
+  bool resume = false;  // continue from the newest valid checkpoint in out_dir
 };
 
 // Creates DIR and DIR/vtk (exit code 1 on failure).
@@ -38,6 +40,11 @@ class VtkSeries {
   explicit VtkSeries(const std::string& dir) : dir_(dir), pvd_(dir + "/vtk/particles.pvd") {}
   void write(const World<D>& world);
   int count() const { return count_; }
+  // Checkpoints: the frames written so far. restore() also deletes the files of frames
+  // written after the checkpoint and rewrites the index, so that a resumed run's series
+  // is the one an uninterrupted run writes.
+  void save(StateWriter& out) const;
+  void restore(StateReader& in);
 
  private:
   std::string dir_;

@@ -25,16 +25,18 @@ void write_spars_vtp(const std::string& path, const World<D>& world);
 // The .pvd index: part 0 grains, part 1 walls, part 2 spar chains.
 class PvdIndex {
  public:
-  explicit PvdIndex(std::string path) : path_(std::move(path)) {}
-  void add(double time, const std::string& file, int part);
-  void write() const;
-
- private:
   struct Entry {
     double time;
     std::string file;
     int part;
   };
+  explicit PvdIndex(std::string path) : path_(std::move(path)) {}
+  void add(double time, const std::string& file, int part);
+  void write() const;
+  const std::vector<Entry>& entries() const { return entries_; }
+  std::vector<Entry>& entries() { return entries_; }
+
+ private:
   std::string path_;
   std::vector<Entry> entries_;
 };

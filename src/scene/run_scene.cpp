@@ -1,6 +1,8 @@
 #include "scene/run_scene.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cstdio>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -8,6 +10,9 @@
 #include "contacts/bonds.hpp"
 #include "core/error.hpp"
 #include "core/step.hpp"
+#include "core/world_state.hpp"
+#include "io/checkpoint.hpp"
+#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "measure/measurements.hpp"
@@ -34,6 +39,41 @@ Box<D> grains_box(const World<D>& w) {
   return b;
 }
 
+// The newest valid checkpoint of out_dir, checked against this scenario. Only the run's
+// length and the checkpoint and stop settings may change on resuming.
+Checkpoint resume_checkpoint(const SceneSettings& s, const std::string& out_dir, int dimension) {
+  std::vector<std::string> skipped;
+  Checkpoint c;
+  try {
+    c = load_latest_checkpoint(out_dir, &skipped);
+  } catch (const CheckpointError& e) {
+    throw InputError(s.file, 0, "", std::string("cannot resume: ") + e.what());
+  }
+  for (const auto& why : skipped)
+    std::fprintf(stderr, "warning: skipped checkpoint %s\n", why.c_str());
+  if (c.kind != "scene" || c.dimension != dimension)
+    throw InputError(s.file, 0, "kind",
+                     "cannot resume: " + c.path + " is a " + std::to_string(c.dimension) + "D '" +
+                         c.kind + "' run's checkpoint");
+  nlohmann::json saved = nlohmann::json::parse(c.scenario, nullptr, false);
+  if (saved.is_discarded())
+    throw InputError(s.file, 0, "", "cannot resume: unreadable settings in " + c.path);
+  for (const auto& op : nlohmann::json::diff(saved, s.resolved)) {
+    const std::string path = op["path"].get<std::string>();
+    std::string key = path.substr(1);
+    std::replace(key.begin(), key.end(), '/', '.');
+    for (const char* free : {"time/duration", "time/steps", "checkpoint", "stop"})
+      if (path.rfind(std::string("/") + free, 0) == 0) key.clear();
+    if (key.empty() || key == "file") continue;
+    throw InputError(s.file, 0, key,
+                     "differs from the setting of the run being resumed (" + c.path +
+                         "); only time.duration, time.steps, [checkpoint] and [stop] may change");
+  }
+  std::fprintf(stderr, "resuming from %s (step %llu, t = %g s)\n", c.path.c_str(),
+               static_cast<unsigned long long>(c.step), c.time);
+  return c;
+}
+
 template <int D>
 nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   using Clock = std::chrono::steady_clock;
@@ -41,7 +81,20 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   build_world<D>(s, w);
   w.threads = opt.threads;
   prepare_output_dir(opt.out_dir);
-  const std::size_t bonds_created = s.bonds_initial ? create_bonds(w, s.bond_gap_tolerance) : 0;
+
+  // The runner's own state in a checkpoint, beside the world's.
+  std::uint64_t bonds_created = 0;
+  double wall_before = 0.0;  // wall time of the run before the checkpoint resumed from
+  std::uint8_t finished = 0;
+  std::string stop_reason = "end of duration";
+  Checkpoint resumed;
+  if (opt.resume) {
+    resumed = resume_checkpoint(s, opt.out_dir, D);
+    StateReader in(resumed.world.data(), resumed.world.size());
+    load_world_state(in, w);
+  } else if (s.bonds_initial) {
+    bonds_created = create_bonds(w, s.bond_gap_tolerance);
+  }
 
   std::optional<Box<D>> box;
   if (s.output.measure_box) {
@@ -74,12 +127,34 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     return std::array<double, 3>{S.tension[e0], S.tension[e1], tmax};
   };
   HistoryCsv history;
-  history.open(opt.out_dir + "/history.csv", cols);
   VtkSeries<D> vtk(opt.out_dir);
+  if (opt.resume) {
+    StateReader in(resumed.runner.data(), resumed.runner.size());
+    in(bonds_created), in(wall_before), in(finished), in(stop_reason);
+    vtk.restore(in);
+    history.resume(opt.out_dir + "/history.csv", cols, static_cast<double>(w.step));
+  } else {
+    history.open(opt.out_dir + "/history.csv", cols);
+  }
 
   const auto t0 = Clock::now();
+  auto elapsed = [&] { return wall_before + std::chrono::duration<double>(Clock::now() - t0).count(); };
+  std::string last_checkpoint;
+  std::uint64_t last_checkpoint_step = 0;
+  double last_checkpoint_wall = elapsed();
+  auto checkpoint = [&] {
+    StateWriter runner, world;
+    runner(bonds_created), runner(elapsed()), runner(finished), runner(stop_reason);
+    vtk.save(runner);
+    save_world_state(world, w);
+    Checkpoint c{"scene", D, w.step, w.time, s.resolved.dump(), std::move(runner.bytes()),
+                 std::move(world.bytes()), ""};
+    last_checkpoint = write_checkpoint(opt.out_dir, c, s.checkpoint.keep);
+    last_checkpoint_step = w.step;
+    last_checkpoint_wall = elapsed();
+  };
   auto record = [&]() {
-    const double wall_now = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double wall_now = elapsed();
     std::vector<double> row = {static_cast<double>(w.step),
                                w.time,
                                wall_now,
@@ -108,17 +183,19 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   };
 
   Progress progress(opt.quiet);
-  std::string status = "completed", stop_reason = "end of duration";
+  std::string status = "completed";
   std::string message;
-  update_timestep(w);
-  if (s.output.vtk) vtk.write(w);
+  if (!opt.resume) {
+    update_timestep(w);
+    if (s.output.vtk) vtk.write(w);
+  }
   const double duration =
       s.time.duration > 0.0 ? s.time.duration : std::numeric_limits<double>::infinity();
   const std::uint64_t max_steps =
       s.time.steps > 0 ? s.time.steps : std::numeric_limits<std::uint64_t>::max();
   double unbalanced = std::numeric_limits<double>::quiet_NaN();
   try {
-    while (w.step < max_steps && w.time < duration * (1.0 - 1e-12)) {
+    while (!finished && w.step < max_steps && w.time < duration * (1.0 - 1e-12)) {
       const bool last = w.step + 1 >= max_steps || w.time + w.dt >= duration * (1.0 - 1e-12);
       w.measure_this_step = last || w.step % s.output.history_every == 0;
       step(w);
@@ -141,21 +218,40 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
         }
       }
       if (s.output.vtk && s.output.vtk_every > 0 && w.step % s.output.vtk_every == 0) vtk.write(w);
+      // A checkpoint closes a step whose outputs are all written.
+      if (interrupt_signal()) {
+        checkpoint();
+        status = "interrupted";
+        break;
+      }
+      if ((s.checkpoint.every_steps > 0 && w.step % s.checkpoint.every_steps == 0) ||
+          (s.checkpoint.every_seconds > 0.0 &&
+           elapsed() - last_checkpoint_wall >= s.checkpoint.every_seconds))
+        checkpoint();
     }
-    check_finite(w);
+    if (status == "completed") check_finite(w);
   } catch (const InstabilityError& e) {
     status = "unstable";
     message = e.what();
+    if (!last_checkpoint.empty())
+      message += "; last checkpoint: " + last_checkpoint + " (step " +
+                 std::to_string(last_checkpoint_step) + ")";
   }
   progress.finish();
-  const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  if (s.output.vtk && status == "completed" &&
-      (s.output.vtk_every == 0 || w.step % s.output.vtk_every != 0))
-    vtk.write(w);
+  const double wall_s = elapsed();
+  if (status == "completed" && !finished) {
+    if (s.output.vtk && (s.output.vtk_every == 0 || w.step % s.output.vtk_every != 0))
+      vtk.write(w);
+    finished = 1;
+    if (s.checkpoint.enabled()) checkpoint();
+  }
 
   nlohmann::json results;
   results["status"] = status;
-  results["stop_reason"] = status == "completed" ? stop_reason : message;
+  results["stop_reason"] = status == "completed"     ? stop_reason
+                           : status == "interrupted" ? "signal " + std::to_string(interrupt_signal())
+                                                     : message;
+  if (!last_checkpoint.empty()) results["checkpoint"] = last_checkpoint;
   results["time"] = w.time;
   results["steps"] = w.step;
   results["dt"] = w.dt;
@@ -206,6 +302,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
       write_run_summary(opt.out_dir, "scene", status, s.resolved, results,
                         timing_json(w, wall_s, w.step, opt.threads));
   if (status == "unstable") throw InstabilityError(message);
+  if (status == "interrupted") throw Interrupted{interrupt_signal(), last_checkpoint};
   return summary;
 }
 

@@ -322,8 +322,20 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     }
     t->finish();
   }
+  if (auto t = r.table("checkpoint")) {
+    s.checkpoint = read_checkpoint_spec(*t);
+    t->finish();
+  }
   r.finish();
   return s;
+}
+
+CheckpointSpec read_checkpoint_spec(TableReader& t) {
+  CheckpointSpec c;
+  c.every_steps = static_cast<std::uint64_t>(t.integer("every_steps", 0, 0, (1LL << 50)));
+  c.every_seconds = t.non_negative("every_seconds", 0.0);
+  c.keep = static_cast<int>(t.integer("keep", 2, 1, 1000));
+  return c;
 }
 
 }  // namespace geodem

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "clumps/grain_mix.hpp"
+#include "io/checkpoint.hpp"
 #include "io/toml_reader.hpp"
 #include "materials/material.hpp"
 
@@ -123,11 +124,15 @@ struct SceneSettings {
   std::vector<CloudSpec> clouds;
   std::vector<ParticleFileSpec> particle_files;
   OutputSpec output;
+  CheckpointSpec checkpoint;
   nlohmann::json resolved;  // every setting with its value, defaults included
 };
 
 // Reads one [[materials]] entry (also used by the lab tests' [material] table).
 Material read_material(TableReader& t, const std::string& fallback_name);
+
+// Reads a [checkpoint] table (keys every_steps, every_seconds, keep).
+CheckpointSpec read_checkpoint_spec(TableReader& t);
 
 // Parses and checks a scene scenario from its root table.
 SceneSettings read_scene(const toml::table& root, const std::string& file);

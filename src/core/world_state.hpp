@@ -1,0 +1,20 @@
+// The dynamic state of a World as a binary archive (checkpoints): everything a step reads
+// or writes, so that a run resumed from it continues bit for bit like one never stopped.
+// What the scenario alone determines (material names, wall and chain names, controllers'
+// settings) is rebuilt from the scenario; the names and counts are checked on loading.
+#pragma once
+
+#include "core/world.hpp"
+#include "io/state_archive.hpp"
+
+namespace geodem {
+
+template <int D>
+void save_world_state(StateWriter& out, const World<D>& world);
+
+// Overwrites world's dynamic state; world must have been built from the same scenario
+// (same walls, chains, materials, controllers). Throws CheckpointError otherwise.
+template <int D>
+void load_world_state(StateReader& in, World<D>& world);
+
+}  // namespace geodem

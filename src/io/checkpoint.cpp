@@ -1,0 +1,151 @@
+#include "io/checkpoint.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+namespace geodem {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kMagic[8] = {'G', 'E', 'O', 'D', 'E', 'M', 'C', 'K'};
+constexpr std::uint32_t kFormatVersion = 1;
+// Byte order and the sizes the archive relies on, in one word.
+constexpr std::uint32_t kMachineMark =
+    0x01020000u | static_cast<std::uint32_t>(sizeof(void*) << 8) | sizeof(double);
+constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + 8 + 4;
+
+std::uint32_t crc32_of(const char* p, std::size_t n) {
+  return static_cast<std::uint32_t>(
+      crc32_z(0L, reinterpret_cast<const Bytef*>(p), static_cast<z_size_t>(n)));
+}
+
+// Step of "checkpoint_000000001234.bin", or -1 for any other name.
+long long step_of(const std::string& name) {
+  const std::string prefix = "checkpoint_", suffix = ".bin";
+  if (name.size() != prefix.size() + 12 + suffix.size() || name.rfind(prefix, 0) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return -1;
+  long long step = 0;
+  for (std::size_t k = prefix.size(); k < prefix.size() + 12; ++k) {
+    if (name[k] < '0' || name[k] > '9') return -1;
+    step = step * 10 + (name[k] - '0');
+  }
+  return step;
+}
+
+// The checkpoint files of a folder, newest first.
+std::vector<fs::path> checkpoint_files(const std::string& folder) {
+  std::vector<std::pair<long long, fs::path>> found;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(folder, ec)) {
+    const long long s = step_of(e.path().filename().string());
+    if (s >= 0) found.emplace_back(s, e.path());
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a > b; });
+  std::vector<fs::path> out;
+  for (auto& f : found) out.push_back(f.second);
+  return out;
+}
+
+void sync_path(const std::string& path, bool directory) {
+  const int fd = ::open(path.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
+  if (fd < 0) return;
+  (void)::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+std::string checkpoint_folder(const std::string& out_dir) { return out_dir + "/checkpoint"; }
+
+std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep) {
+  StateWriter payload;
+  payload(c.kind), payload(c.dimension), payload(c.step), payload(c.time);
+  payload(c.scenario), payload(c.runner), payload(c.world);
+  const std::string& body = payload.bytes();
+
+  std::string head(kMagic, sizeof kMagic);
+  auto put = [&head](const auto& v) { head.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  put(kFormatVersion), put(kMachineMark), put(static_cast<std::uint64_t>(body.size()));
+  put(crc32_of(body.data(), body.size()));
+
+  const std::string folder = checkpoint_folder(out_dir);
+  fs::create_directories(folder);
+  char name[64];
+  std::snprintf(name, sizeof name, "checkpoint_%012llu.bin",
+                static_cast<unsigned long long>(c.step));
+  const std::string path = folder + "/" + name, tmp = folder + "/." + name + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot write " + tmp);
+    out.write(head.data(), static_cast<std::streamsize>(head.size()));
+    out.write(body.data(), static_cast<std::streamsize>(body.size()));
+    out.flush();
+    if (!out) throw std::runtime_error("error writing " + tmp + " (disk full?)");
+  }
+  sync_path(tmp, false);  // the data on disk before the name points to it
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw std::runtime_error("cannot rename " + tmp + " to " + path);
+  sync_path(folder, true);
+
+  const auto files = checkpoint_files(folder);
+  for (std::size_t k = static_cast<std::size_t>(std::max(keep, 1)); k < files.size(); ++k) {
+    std::error_code ec;
+    fs::remove(files[k], ec);
+  }
+  return path;
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CheckpointError("cannot be read");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < kHeaderBytes) throw CheckpointError("truncated header");
+  if (bytes.compare(0, sizeof kMagic, kMagic, sizeof kMagic) != 0)
+    throw CheckpointError("not a geodem checkpoint");
+  StateReader head(bytes.data() + sizeof kMagic, kHeaderBytes - sizeof kMagic);
+  std::uint32_t version = 0, mark = 0, crc = 0;
+  std::uint64_t length = 0;
+  head(version), head(mark), head(length), head(crc);
+  if (version != kFormatVersion)
+    throw CheckpointError("format version " + std::to_string(version) + ", this program reads " +
+                          std::to_string(kFormatVersion));
+  if (mark != kMachineMark) throw CheckpointError("written on a machine of another byte order");
+  if (length != bytes.size() - kHeaderBytes)
+    throw CheckpointError("truncated: " + std::to_string(bytes.size() - kHeaderBytes) + " of " +
+                          std::to_string(length) + " bytes");
+  const char* body = bytes.data() + kHeaderBytes;
+  if (crc32_of(body, length) != crc) throw CheckpointError("checksum mismatch (corrupt)");
+  Checkpoint c;
+  StateReader r(body, length);
+  r(c.kind), r(c.dimension), r(c.step), r(c.time), r(c.scenario), r(c.runner), r(c.world);
+  if (!r.at_end()) throw CheckpointError("trailing bytes");
+  c.path = path;
+  return c;
+}
+
+Checkpoint load_latest_checkpoint(const std::string& out_dir, std::vector<std::string>* skipped) {
+  const std::string folder = checkpoint_folder(out_dir);
+  std::string reasons;
+  for (const auto& f : checkpoint_files(folder)) {
+    try {
+      return read_checkpoint(f.string());
+    } catch (const CheckpointError& e) {
+      const std::string why = f.filename().string() + ": " + e.what();
+      if (skipped) skipped->push_back(why);
+      reasons += (reasons.empty() ? " (" : "; ") + why;
+    }
+  }
+  throw CheckpointError("no valid checkpoint in " + folder + (reasons.empty() ? "" : reasons + ")"));
+}
+
+}  // namespace geodem

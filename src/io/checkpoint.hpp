@@ -1,0 +1,51 @@
+// Checkpoint files: a run's complete state at the end of a step, in DIR/checkpoint/.
+//
+// File layout (little-endian machine order): "GEODEMCK", format version (u32), a byte-order
+// and type-size mark (u32), payload length (u64), CRC-32 of the payload (u32), payload.
+// A file is written under a temporary name, flushed to disk and renamed, so a crash leaves
+// either the previous checkpoints or the new one whole; the oldest are pruned only after
+// the newest is in place. Loading verifies length and checksum and falls back to the
+// previous file when the newest is corrupt or truncated.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/state_archive.hpp"
+
+namespace geodem {
+
+// [checkpoint] of a scenario. Off unless a period is given; a signal (io/interrupt.hpp)
+// writes one in any case.
+struct CheckpointSpec {
+  std::uint64_t every_steps = 0;  // 0: off
+  double every_seconds = 0.0;     // wall-clock seconds; 0: off
+  int keep = 2;                   // newest files kept (older ones are the fallback)
+  bool enabled() const { return every_steps > 0 || every_seconds > 0.0; }
+};
+
+struct Checkpoint {
+  std::string kind;      // scenario kind
+  int dimension = 3;
+  std::uint64_t step = 0;
+  double time = 0.0;
+  std::string scenario;  // the resolved settings (JSON) of the run that wrote it
+  std::string runner;    // the runner's own state (outputs written so far...), an archive
+  std::string world;     // save_world_state()
+  std::string path;      // where it was read from (not stored)
+};
+
+std::string checkpoint_folder(const std::string& out_dir);
+
+// Writes the checkpoint atomically and keeps the `keep` newest files; returns its path.
+std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep);
+
+// The newest valid checkpoint of out_dir; each file skipped as invalid is reported in
+// `skipped` ("name: reason"). Throws CheckpointError when there is none.
+Checkpoint load_latest_checkpoint(const std::string& out_dir, std::vector<std::string>* skipped);
+
+// Reads and verifies one file (CheckpointError if it is not a whole, valid checkpoint).
+Checkpoint read_checkpoint(const std::string& path);
+
+}  // namespace geodem

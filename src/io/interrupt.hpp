@@ -1,0 +1,22 @@
+// SIGINT and SIGTERM during a run: the handler only notes the signal; the run loop sees
+// it after the step in progress, writes a checkpoint and its outputs, and the program
+// exits with 128 + the signal number (130, 143). A second signal ends the program at once.
+#pragma once
+
+#include <string>
+
+namespace geodem {
+
+// Installs the handlers (idempotent).
+void install_interrupt_handlers();
+
+// The signal received (SIGINT, SIGTERM), or 0.
+int interrupt_signal();
+
+// Thrown by a run loop that stopped on a signal, after its outputs are written.
+struct Interrupted {
+  int signal;
+  std::string checkpoint;  // path of the checkpoint written, or empty
+};
+
+}  // namespace geodem
