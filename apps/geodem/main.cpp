@@ -13,9 +13,8 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "io/interrupt.hpp"
-#include "io/material_file.hpp"
 #include "io/run_output.hpp"
-#include "io/toml_reader.hpp"
+#include "io/scenario_file.hpp"
 #include "lab/run_pullout.hpp"
 #include "lab/run_triaxial.hpp"
 #include "scene/build_scene.hpp"
@@ -27,30 +26,10 @@ namespace {
 
 constexpr int kOk = 0, kFailure = 1, kBadInput = 2, kUnstable = 3;
 
-struct Loaded {
-  toml::table root;
-  std::string kind;
-};
+using Loaded = geodem::LoadedScenario;
 
 Loaded load(const std::string& file, const std::vector<std::string>& overrides) {
-  Loaded l{geodem::parse_toml_file(file), ""};
-  for (const auto& o : overrides) geodem::apply_override(l.root, o, file);
-  const toml::node* kind = l.root.get("kind");
-  if (!kind) throw geodem::InputError(file, 1, "kind", "missing; expected kind = \"scene\"");
-  if (!kind->is_string())
-    throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
-                             "expected a string");
-  l.kind = *kind->value<std::string>();
-  static const std::vector<std::string> kinds = {"scene",  "triaxial",   "pullout",
-                                                 "series", "rate_study", "calibrate"};
-  if (std::find(kinds.begin(), kinds.end(), l.kind) == kinds.end()) {
-    std::string known;
-    for (const auto& k : kinds) known += (known.empty() ? "\"" : ", \"") + k + "\"";
-    throw geodem::InputError(file, static_cast<int>(kind->source().begin.line), "kind",
-                             "unknown kind \"" + l.kind + "\"; expected one of " + known);
-  }
-  geodem::expand_material_reference(l.root, l.kind, file);
-  return l;
+  return geodem::load_scenario(file, overrides);
 }
 
 int run_main(int argc, char** argv);

@@ -15,10 +15,12 @@ class InputError : public std::runtime_error {
       : std::runtime_error(format(file, line, key, what)),
         file_(std::move(file)),
         line_(line),
-        key_(std::move(key)) {}
+        key_(std::move(key)),
+        detail_(what) {}
   const std::string& file() const { return file_; }
   int line() const { return line_; }
   const std::string& key() const { return key_; }
+  const std::string& detail() const { return detail_; }  // what was expected
 
  private:
   static std::string format(const std::string& file, int line, const std::string& key,
@@ -33,6 +35,7 @@ class InputError : public std::runtime_error {
   std::string file_;
   int line_;
   std::string key_;
+  std::string detail_;
 };
 
 // The simulation became unstable: names the step, the body and a likely cause.

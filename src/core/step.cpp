@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "broadphase/neighbour_search.hpp"
@@ -81,7 +82,15 @@ template <int D>
 void update_timestep(World<D>& world) {
   if (!world.auto_dt) return;
   const double dt = critical_timestep(world);
-  if (std::isfinite(dt) && dt > 0.0) world.dt = dt;
+  if (std::isfinite(dt) && dt > 0.0) {
+    world.dt = dt;
+  } else if (!(dt > 0.0)) {  // zero or NaN: the run cannot advance (+inf: keep the last step)
+    throw InstabilityError(
+        "the critical time step is " + std::to_string(dt) + " at step " +
+        std::to_string(world.step) +
+        "; likely cause: contact stiffness out of proportion to the grains' masses (check "
+        "young / kn and density)");
+  }
 }
 
 template <int D>

@@ -36,13 +36,19 @@ std::string fmt_num(double x) {
 
 }  // namespace
 
+// Edits between two keys, a swap of neighbouring letters counting as one (the commonest
+// typo: 'titel' is one edit from 'title', two from 'time').
 std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  std::vector<std::size_t> before(b.size() + 1), prev(b.size() + 1), cur(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i) {
     cur[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
       cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        cur[j] = std::min(cur[j], before[j - 2] + 1);
+    }
+    std::swap(before, prev);
     std::swap(prev, cur);
   }
   return prev[b.size()];
@@ -53,14 +59,50 @@ toml::table parse_toml_file(const std::string& path) {
   if (!in) throw InputError(path, 0, "", "cannot open the scenario file");
   std::stringstream ss;
   ss << in.rdbuf();
-  const std::string text = ss.str();
+  return parse_toml_text(ss.str(), path);
+}
+
+int source_line(const toml::table& root, const std::string& dotted_key) {
+  const toml::node* n = &root;
+  std::size_t begin = 0;
+  while (n && begin <= dotted_key.size()) {
+    const std::size_t dot = std::min(dotted_key.find('.', begin), dotted_key.size());
+    const std::string part = dotted_key.substr(begin, dot - begin);
+    if (const auto* t = n->as_table()) {
+      n = t->get(part);
+    } else if (const auto* a = n->as_array()) {
+      const bool digits = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+      n = digits && part.size() < 10 ? a->get(std::stoul(part)) : nullptr;
+    } else {
+      n = nullptr;
+    }
+    begin = dot + 1;
+  }
+  return n ? static_cast<int>(n->source().begin.line) : 0;
+}
+
+toml::table parse_toml_text(const std::string& text, const std::string& path) {
   if (text.find('\0') != std::string::npos)
     throw InputError(path, 0, "", "the file is binary, not a TOML scenario");
   try {
     return toml::parse(text, path);
   } catch (const toml::parse_error& e) {
-    throw InputError(path, static_cast<int>(e.source().begin.line), "",
-                     std::string("TOML syntax error: ") + std::string(e.description()));
+    // Quote the line: the parser's words alone ("expected ']'") do not say which key.
+    const auto line_no = static_cast<int>(e.source().begin.line);
+    std::string line;
+    std::size_t at = 0;
+    for (int k = 1; k < line_no && at != std::string::npos; ++k) {
+      at = text.find('\n', at);
+      if (at != std::string::npos) ++at;
+    }
+    if (at != std::string::npos && line_no > 0) line = text.substr(at, text.find('\n', at) - at);
+    if (line.size() > 80) line = line.substr(0, 77) + "...";
+    for (char& c : line)
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+    std::string msg = std::string("TOML syntax error: ") + std::string(e.description());
+    if (!line.empty()) msg += " in: " + line;
+    if (std::count(line.begin(), line.end(), '"') % 2 == 1) msg += " (a string is not closed)";
+    throw InputError(path, line_no, "", msg);
   }
 }
 
@@ -146,6 +188,7 @@ void TableReader::record(const std::string& key, nlohmann::json v) {
 }
 
 bool TableReader::has(const std::string& key) const {
+  used_.insert(key);  // a key asked about is a key of this table (for finish()'s suggestions)
   return table_->contains(key);
 }
 

@@ -16,6 +16,11 @@ namespace geodem {
 
 // Parses a TOML file; errors become InputError with file and line.
 toml::table parse_toml_file(const std::string& path);
+// Line of a dotted key ("shear.confining_stress") in a parsed file, 0 if absent.
+int source_line(const toml::table& root, const std::string& dotted_key);
+
+// The same for text in memory; `name` stands for the file in messages.
+toml::table parse_toml_text(const std::string& text, const std::string& name);
 
 // Applies `--set dotted.key=value` (value in TOML syntax, or a bare string).
 // Numeric path parts index arrays of tables: walls.0.velocity=[0,0,-1].

@@ -11,6 +11,7 @@
 #include "clumps/grain_mix.hpp"
 #include "core/error.hpp"
 #include "core/random.hpp"
+#include "io/output_files.hpp"
 #include "scene/random_cloud.hpp"
 
 namespace geodem {
@@ -53,6 +54,11 @@ void read_particle_file(const ParticleFileSpec& spec, std::size_t index,
   std::string line;
   int lineno = 0;
   std::vector<double> values;
+  // Names the scenario, its key and the data file's line.
+  auto bad_row = [&](const std::string& what) {
+    return InputError(scenario, 0, "particle_files." + std::to_string(index),
+                      spec.path + ":" + std::to_string(lineno) + ": " + what);
+  };
   while (std::getline(in, line)) {
     ++lineno;
     if (auto h = line.find('#'); h != std::string::npos) line.resize(h);
@@ -63,14 +69,13 @@ void read_particle_file(const ParticleFileSpec& spec, std::size_t index,
       char* end = nullptr;
       const double v = std::strtod(tok.c_str(), &end);
       if (end == tok.c_str() || *end != '\0' || !std::isfinite(v))
-        throw InputError(spec.path, lineno, "", "expected numbers, got '" + tok + "'");
+        throw bad_row("expected numbers, got '" + tok + "'");
       values.push_back(v);
     }
     if (values.empty()) continue;
     if (values.size() != spec.columns.size())
-      throw InputError(spec.path, lineno, "",
-                       "expected " + std::to_string(spec.columns.size()) + " columns, got " +
-                           std::to_string(values.size()));
+      throw bad_row("expected " + std::to_string(spec.columns.size()) + " columns, got " +
+                    std::to_string(values.size()));
     Vec x = Vec::Zero(), v = Vec::Zero();
     double r = spec.radius;
     for (std::size_t c = 0; c < values.size(); ++c) {
@@ -90,7 +95,7 @@ void read_particle_file(const ParticleFileSpec& spec, std::size_t index,
       else if (name == "radius")
         r = values[c];
     }
-    if (!(r > 0.0)) throw InputError(spec.path, lineno, "", "radius must be positive");
+    if (!(r > 0.0)) throw bad_row("radius must be positive");
     add(x, r, v);
   }
 }
@@ -247,6 +252,20 @@ void build_world(const SceneSettings& s, World<D>& world) {
     const double mean = cl.radius > 0.0 ? cl.radius
                                         : mean_radius_for_porosity<D>((hi - lo).prod(), cl.count,
                                                                       cl.porosity, cl.fuzz);
+    // Solid fraction asked for: beyond what random placement can reach, say so at once
+    // rather than after trying (mean volume with radii uniform in mean (1 +- fuzz)).
+    const double f2 = cl.fuzz * cl.fuzz;
+    const double grain_volume =
+        Dim<D>::volume(mean) * (D == 3 ? 1.0 + f2 : 1.0 + f2 / 3.0);
+    const double solid = static_cast<double>(cl.count) * grain_volume / (hi - lo).prod();
+    // Random sequential placement jams at about 38 % solid (spheres), 55 % (discs).
+    if (solid > (D == 3 ? 0.40 : 0.56))
+      throw InputError(s.file, 0, "clouds." + std::to_string(c),
+                       "too dense: " + std::to_string(cl.count) + " grains of mean radius " +
+                           format_number(mean) + " m would fill " +
+                           format_number(std::round(solid * 1000.0) / 10.0) +
+                           " % of the cloud's box; random placement jams near 38 % (spheres) or 55 % "
+                           "(discs): enlarge the box, or lower the count or the radius");
     std::vector<Sphere<D>> grains;
     try {
       grains = random_cloud<D>(lo, hi, cl.count, mean, cl.fuzz, rng, placed);

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <set>
 
+#include "io/output_files.hpp"
+
 namespace geodem {
 
 namespace {
@@ -20,6 +22,14 @@ double friction_from(TableReader& t, double fallback) {
 }  // namespace
 
 Material read_material(TableReader& t, const std::string& fallback_name) {
+  // Stiffnesses beyond any mineral's (1e15 Pa or N/m) only make the time step vanish.
+  auto stiffness = [&t](const std::string& key, double fallback) {
+    const double v = t.positive(key, fallback);
+    if (v > 1e15)
+      t.fail(key, "expected a stiffness of at most 1e15 (stiffer than any mineral; the time step "
+                  "would vanish), got " + format_number(v));
+    return v;
+  };
   Material m;
   m.name = t.string("name", fallback_name);
   m.density = t.positive("density", 2600.0);
@@ -32,15 +42,16 @@ Material read_material(TableReader& t, const std::string& fallback_name) {
     if (t.has("kn") && t.has("young"))
       t.fail("kn", "give either constant stiffness 'kn' or contact modulus 'young', not both");
     if (t.has("kn")) {
-      m.kn = t.positive("kn", 0.0);
+      m.kn = stiffness("kn", 0.0);
       m.kt = t.has("kt") ? t.non_negative("kt", 0.0) : -1.0;
+      if (m.kt > 0.0) stiffness("kt", 0.0);
       m.kt_over_kn = t.non_negative("kt_over_kn", 0.5);
     } else {
-      m.young = t.positive("young", 1e7);
+      m.young = stiffness("young", 1e7);
       m.kt_over_kn = t.non_negative("kt_over_kn", 0.5);
     }
   } else {
-    m.young = t.positive("young", 1e7);
+    m.young = stiffness("young", 1e7);
     m.poisson = t.in_range("poisson", 0.25, -0.99, 0.499);
   }
   m.rolling_friction = t.non_negative("rolling_friction", 0.0);

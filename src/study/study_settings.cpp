@@ -9,6 +9,13 @@ namespace geodem {
 
 namespace {
 
+// Series and rate studies run one confining stress per test (calibration runs several).
+void single_confining_stress(const StudyBase& b, const toml::table& root) {
+  if (b.check.confining_stresses.size() != 1)
+    throw InputError(b.file, source_line(root, "shear.confining_stress"), "shear.confining_stress",
+                     "a study runs one confining stress per test; give a single value");
+}
+
 // The study file minus its own tables, read as a triaxial scenario.
 StudyBase read_base(const toml::table& root, const std::string& file, const std::string& kind,
                     const std::vector<std::string>& own_tables) {
@@ -21,7 +28,14 @@ StudyBase read_base(const toml::table& root, const std::string& file, const std:
   // The runs write no VTK or plots of their own; the study makes its figures.
   set_key(b.base, "output.vtk", false);
   set_key(b.base, "output.plots", false);
-  b.check = read_triaxial(b.base, file);
+  try {
+    b.check = read_triaxial(b.base, file);
+  } catch (const InputError& e) {
+    // The copy has lost its source lines: find the key's line in the file itself.
+    if (e.line() != 0 || e.key().empty()) throw;
+    throw InputError(e.file(), source_line(root, e.key()), e.key(), e.detail());
+  }
+  if (kind != "calibrate") single_confining_stress(b, root);
   b.resolved = b.check.resolved;
   b.resolved["kind"] = kind;
   b.resolved.erase("output");
@@ -40,18 +54,12 @@ std::string quantity(TableReader& t) {
   return t.choice("quantity", "peak_q", study_quantities());
 }
 
-void single_confining_stress(const StudyBase& b) {
-  if (b.check.confining_stresses.size() != 1)
-    throw InputError(b.file, 0, "shear.confining_stress",
-                     "a study runs one confining stress per test; give a single value");
-}
 
 }  // namespace
 
 SeriesSettings read_series(const toml::table& root, const std::string& file) {
   SeriesSettings s;
   s.study = read_base(root, file, "series", {"series"});
-  single_confining_stress(s.study);
   TableReader t = study_table(root, file, s.study.resolved, "series", "counts, seeds");
   const std::vector<double> counts = t.numbers("counts", std::vector<double>{}, 2);
   std::set<std::size_t> distinct;
@@ -73,7 +81,6 @@ SeriesSettings read_series(const toml::table& root, const std::string& file) {
 RateStudySettings read_rate_study(const toml::table& root, const std::string& file) {
   RateStudySettings s;
   s.study = read_base(root, file, "rate_study", {"rate_study"});
-  single_confining_stress(s.study);
   TableReader t = study_table(root, file, s.study.resolved, "rate_study", "strain_rates, damping");
   s.strain_rates = t.numbers("strain_rates", std::vector<double>{}, 1);
   for (double r : s.strain_rates)
