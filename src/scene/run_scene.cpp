@@ -85,7 +85,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   // The runner's own state in a checkpoint, beside the world's.
   std::uint64_t bonds_created = 0;
   double wall_before = 0.0;  // wall time of the run before the checkpoint resumed from
-  std::uint8_t finished = 0;
+  std::uint8_t finished = 0;  // the final outputs are written
+  bool at_rest = false;
   std::string stop_reason = "end of duration";
   Checkpoint resumed;
   if (opt.resume) {
@@ -132,6 +133,9 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     StateReader in(resumed.runner.data(), resumed.runner.size());
     in(bonds_created), in(wall_before), in(finished), in(stop_reason);
     vtk.restore(in);
+    // A finished run goes on if its duration or step count was raised, unless it stopped
+    // at rest.
+    at_rest = finished && stop_reason != "end of duration";
     history.resume(opt.out_dir + "/history.csv", cols, static_cast<double>(w.step));
   } else {
     history.open(opt.out_dir + "/history.csv", cols);
@@ -193,9 +197,12 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
       s.time.duration > 0.0 ? s.time.duration : std::numeric_limits<double>::infinity();
   const std::uint64_t max_steps =
       s.time.steps > 0 ? s.time.steps : std::numeric_limits<std::uint64_t>::max();
-  double unbalanced = std::numeric_limits<double>::quiet_NaN();
+  // (a resumed run has the forces of its last step: the same figure as before it stopped)
+  double unbalanced =
+      opt.resume ? unbalanced_force_ratio(w) : std::numeric_limits<double>::quiet_NaN();
+  const std::uint64_t first_step = w.step;
   try {
-    while (!finished && w.step < max_steps && w.time < duration * (1.0 - 1e-12)) {
+    while (!at_rest && w.step < max_steps && w.time < duration * (1.0 - 1e-12)) {
       const bool last = w.step + 1 >= max_steps || w.time + w.dt >= duration * (1.0 - 1e-12);
       w.measure_this_step = last || w.step % s.output.history_every == 0;
       step(w);
@@ -239,7 +246,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   }
   progress.finish();
   const double wall_s = elapsed();
-  if (status == "completed" && !finished) {
+  if (status == "completed" && !(finished && w.step == first_step)) {
     if (s.output.vtk && (s.output.vtk_every == 0 || w.step % s.output.vtk_every != 0))
       vtk.write(w);
     finished = 1;

@@ -5,9 +5,13 @@ Run by CTest: python3 test_cli.py GEODEM_BINARY REPO_ROOT
 import csv
 import json
 import os
+import random
+import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 from pathlib import Path
 
@@ -366,6 +370,158 @@ create = "initial"
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertTrue((out / "energy.png").exists())
         self.assertEqual(run("plot", str(self.dir / "nothing")).returncode, 2)
+
+
+# A bed of 3,000 spheres with rolling resistance (contact state beyond the spring), VTK
+# frames, and a checkpoint every 300 steps: about 3,300 steps, 2 s on one core.
+CHECKPOINT_SCENE = """
+kind = "scene"
+dimension = 3
+[time]
+step = "auto"
+duration = 0.3
+[physics]
+gravity = [0, 0, -9.81]
+local_damping = 0.2
+[[materials]]
+name = "sand"
+young = 1e6
+friction = 0.5
+rolling_friction = 0.1
+[[walls]]
+name = "floor"
+normal = [0, 0, 1]
+area = 0.01
+[[clouds]]
+min = [0, 0, 0]
+max = [0.1, 0.1, 0.1]
+count = 3000
+radius = 0.002
+[output]
+history_every = 20
+vtk_every = 500
+plots = false
+[checkpoint]
+every_steps = 300
+"""
+
+
+def history_without_wall_time(folder):
+    with open(Path(folder) / "history.csv") as f:
+        rows = list(csv.reader(f))
+    wall = rows[0].index("wall_s")
+    return [r[:wall] + r[wall + 1:] for r in rows]
+
+
+def folder_files(folder):
+    """Bytes of every VTK file and the .pvd index, by name."""
+    return {p.name: p.read_bytes() for p in sorted((Path(folder) / "vtk").iterdir())}
+
+
+class CheckpointTest(unittest.TestCase):
+    """Runs stopped by SIGKILL or SIGTERM at random points and resumed end as one that
+    never stopped: same history (but its wall-clock column), same VTK files, same results."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = Path(self.tmp.name)
+        self.scenario = self.dir / "s.toml"
+        self.scenario.write_text(CHECKPOINT_SCENE)
+        self.ref = self.dir / "ref"
+        t0 = time.monotonic()
+        r = run("run", str(self.scenario), "--out", str(self.ref), "--quiet")
+        self.ref_seconds = time.monotonic() - t0
+        self.assertEqual(r.returncode, 0, r.stderr)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def stop_and_resume(self, sig, stops, seed):
+        out = self.dir / f"run_{sig}"
+        rng = random.Random(seed)
+        fresh = [GEODEM, "run", str(self.scenario), "--out", str(out), "--quiet"]
+        resume = [GEODEM, "run", str(self.scenario), "--resume", str(out), "--quiet"]
+        stopped, launches = 0, 0
+        while True:
+            launches += 1
+            self.assertLess(launches, 40, "the run never finished")
+            has_checkpoint = (out / "checkpoint").is_dir() and any(
+                p.suffix == ".bin" for p in (out / "checkpoint").iterdir())
+            p = subprocess.Popen(resume if has_checkpoint else fresh, stderr=subprocess.PIPE,
+                                 text=True)
+            try:
+                if stopped >= stops:
+                    raise subprocess.TimeoutExpired(p.args, 0)
+                p.wait(timeout=rng.uniform(0.2, 0.6) * self.ref_seconds)
+            except subprocess.TimeoutExpired:
+                if stopped < stops:
+                    p.send_signal(sig)
+                    err = p.communicate(timeout=120)[1]
+                    if p.returncode == 0:  # it ended before the signal arrived
+                        break
+                    stopped += 1
+                    if sig == signal.SIGTERM:
+                        # A clean stop: exit 128 + 15, a checkpoint, outputs, the way to resume.
+                        self.assertEqual(p.returncode, 143, err)
+                        self.assertIn("--resume", err)
+                        s = json.loads((out / "summary.json").read_text())
+                        self.assertEqual(s["status"], "interrupted")
+                        self.assertTrue(Path(s["results"]["checkpoint"]).is_file())
+                    else:
+                        self.assertEqual(p.returncode, -signal.SIGKILL, err)
+                    continue
+                err = p.communicate(timeout=300)[1]
+            self.assertEqual(p.returncode, 0, err)
+            break
+        self.assertGreater(stopped, 0)
+        self.assertEqual(history_without_wall_time(self.ref), history_without_wall_time(out))
+        self.assertEqual(folder_files(self.ref), folder_files(out))
+        a = json.loads((self.ref / "summary.json").read_text())["results"]
+        b = json.loads((out / "summary.json").read_text())["results"]
+        a.pop("checkpoint"), b.pop("checkpoint")
+        self.assertEqual(a, b)
+
+    def test_sigkill_at_random_points_then_resume_is_bitwise(self):
+        self.stop_and_resume(signal.SIGKILL, stops=3, seed=1)
+
+    def test_sigterm_checkpoints_and_resume_is_bitwise(self):
+        self.stop_and_resume(signal.SIGTERM, stops=3, seed=2)
+
+    def test_damaged_newest_checkpoint_falls_back_to_the_previous(self):
+        out = self.dir / "damaged"
+        shutil.copytree(self.ref, out)
+        files = sorted((out / "checkpoint").glob("checkpoint_*.bin"))
+        self.assertEqual(len(files), 2)  # keep = 2: the last periodic one and the final one
+        newest = files[-1]
+        data = bytearray(newest.read_bytes())
+        data[len(data) // 2] ^= 0xFF
+        newest.write_bytes(bytes(data))
+        r = run("run", str(self.scenario), "--resume", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("checksum", r.stderr)
+        self.assertIn(files[0].name, r.stderr)  # resumed from the previous one
+        self.assertEqual(history_without_wall_time(self.ref), history_without_wall_time(out))
+        # Cut short, then nothing valid at all: a clear refusal.
+        files[0].write_bytes(files[0].read_bytes()[:100])
+        for f in (out / "checkpoint").glob("checkpoint_*.bin"):
+            if f != files[0]:
+                f.unlink()
+        r = run("run", str(self.scenario), "--resume", str(out), "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("no valid checkpoint", r.stderr)
+        self.assertIn("truncated", r.stderr)
+
+    def test_resume_refuses_a_changed_scenario(self):
+        r = run("run", str(self.scenario), "--resume", str(self.ref), "--quiet",
+                "--set", "materials.0.friction=0.4")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("materials.0.friction", r.stderr)
+        # The run's length may change: a finished run is extended from its final checkpoint.
+        r = run("run", str(self.scenario), "--resume", str(self.ref), "--quiet",
+                "--set", "time.duration=0.32")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = json.loads((self.ref / "summary.json").read_text())
+        self.assertAlmostEqual(s["results"]["time"], 0.32, delta=1e-3)
 
 
 if __name__ == "__main__":
