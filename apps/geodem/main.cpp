@@ -217,8 +217,7 @@ int run_main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kBadInput;
   } catch (const geodem::Interrupted& i) {
-    std::fprintf(stderr,
-                 "interrupted by signal %d: outputs so far are in %s%s%s\n", i.signal,
+    std::fprintf(stderr, "interrupted by signal %d: outputs so far are in %s%s%s\n", i.signal,
                  out_dir.c_str(), i.checkpoint.empty() ? "" : "; continue with --resume ",
                  i.checkpoint.empty() ? "" : out_dir.c_str());
     return 128 + i.signal;

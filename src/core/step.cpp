@@ -107,6 +107,64 @@ void check_finite(const World<D>& world) {
           std::to_string(world.dt) +
           " s): use time.step = \"auto\" or lower it, or lower the stiffness");
   }
+  // Runaway motion: a contact that closes or slides by half a radius in one step is past
+  // what the contact law resolves (the kinetic energy then grows without bound). Grains in
+  // free flight, or moving together, may be that fast. Candidates first: a relative speed
+  // that large needs one of the two grains at half of it.
+  std::vector<std::uint8_t> fast;
+  auto too_fast = [&](const typename Dim<D>::Vec& v, double r) {
+    return v.norm() * world.dt > 0.5 * r;
+  };
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (P.vel[i].norm() * world.dt > 0.25 * P.radius[i]) {
+      if (fast.empty()) fast.assign(P.size(), 0);
+      fast[i] = 1;
+    }
+  auto runaway = [&](std::size_t i, const std::string& partner, double speed) {
+    throw InstabilityError(
+        "runaway grain " + std::to_string(P.id[i]) + " against " + partner + " at step " +
+        std::to_string(world.step) + " (t = " + std::to_string(world.time) +
+        " s): relative speed " + std::to_string(speed) + " m/s, " +
+        std::to_string(speed * world.dt / P.radius[i]) +
+        " radii per step; likely cause: the kinetic energy grows without bound (time step too "
+        "large for the stiffness, dt = " +
+        std::to_string(world.dt) + " s, or a servo gain too high)");
+  };
+  if (!fast.empty()) {
+    const auto& L = world.nlist;
+    for (std::size_t i = 0; i + 1 < L.start.size() && i < P.size(); ++i) {
+      for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+        const std::size_t j = L.other[k];
+        if (!(fast[i] || fast[j])) continue;
+        const double reach = P.radius[i] + P.radius[j];
+        const auto rel = (P.vel[i] - P.vel[j]).eval();
+        if ((P.pos[i] - P.pos[j]).squaredNorm() < reach * reach &&
+            too_fast(rel, std::min(P.radius[i], P.radius[j])))
+          runaway(fast[i] ? i : j, "grain " + std::to_string(P.id[fast[i] ? j : i]), rel.norm());
+      }
+    }
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      if (!fast[i]) continue;
+      for (const auto& wall : world.walls) {
+        typename Dim<D>::Vec q;
+        const auto rel = (P.vel[i] - wall.velocity).eval();
+        if (wall_closest(wall, P.pos[i], q) && (P.pos[i] - q).norm() < P.radius[i] &&
+            too_fast(rel, P.radius[i]))
+          runaway(i, "wall '" + wall.name + "'", rel.norm());
+      }
+    }
+  }
+  // Escape: a grain wholly behind a plane wall went through it between two contacts.
+  for (const auto& wall : world.walls) {
+    if (wall.kind != WallKind::kPlane) continue;
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if ((P.pos[i] - wall.point).dot(wall.normal) < -P.radius[i])
+        throw InstabilityError(
+            "grain " + std::to_string(P.id[i]) + " escaped through wall '" + wall.name +
+            "' at step " + std::to_string(world.step) + " (t = " + std::to_string(world.time) +
+            " s); likely cause: time step too large (dt = " + std::to_string(world.dt) +
+            " s) or contact stiffness too low for the load");
+  }
   const auto& S = world.spars;
   for (std::size_t i = 0; i < S.nodes(); ++i)
     if (!S.pos[i].allFinite() || !S.vel[i].allFinite())

@@ -13,7 +13,9 @@ void step(World<D>& world);
 template <int D>
 void update_timestep(World<D>& world);
 
-// Throws InstabilityError naming the first grain with a non-finite state.
+// Throws InstabilityError naming the first grain with a non-finite state, one that moves
+// more than half its radius per step (runaway), or one wholly behind a plane wall (escaped);
+// the step runs it every 1000 steps.
 template <int D>
 void check_finite(const World<D>& world);
 

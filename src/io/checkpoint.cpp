@@ -65,7 +65,9 @@ void sync_path(const std::string& path, bool directory) {
 
 }  // namespace
 
-std::string checkpoint_folder(const std::string& out_dir) { return out_dir + "/checkpoint"; }
+std::string checkpoint_folder(const std::string& out_dir) {
+  return out_dir + "/checkpoint";
+}
 
 std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep) {
   StateWriter payload;
@@ -145,7 +147,8 @@ Checkpoint load_latest_checkpoint(const std::string& out_dir, std::vector<std::s
       reasons += (reasons.empty() ? " (" : "; ") + why;
     }
   }
-  throw CheckpointError("no valid checkpoint in " + folder + (reasons.empty() ? "" : reasons + ")"));
+  throw CheckpointError("no valid checkpoint in " + folder +
+                        (reasons.empty() ? "" : reasons + ")"));
 }
 
 }  // namespace geodem

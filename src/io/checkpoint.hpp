@@ -26,7 +26,7 @@ struct CheckpointSpec {
 };
 
 struct Checkpoint {
-  std::string kind;      // scenario kind
+  std::string kind;  // scenario kind
   int dimension = 3;
   std::uint64_t step = 0;
   double time = 0.0;

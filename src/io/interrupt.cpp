@@ -31,6 +31,8 @@ void install_interrupt_handlers() {
   sigaction(SIGTERM, &sa, nullptr);
 }
 
-int interrupt_signal() { return static_cast<int>(g_signal); }
+int interrupt_signal() {
+  return static_cast<int>(g_signal);
+}
 
 }  // namespace geodem

@@ -20,8 +20,7 @@ class HistoryCsv {
   // Reopens a history written by an interrupted run, kept up to and including `last_step`
   // (its first column): later rows and a last row cut short are dropped, so that the
   // resumed run appends exactly the rows an uninterrupted run would have written.
-  void resume(const std::string& path, const std::vector<std::string>& columns,
-              double last_step);
+  void resume(const std::string& path, const std::vector<std::string>& columns, double last_step);
   void row(const std::vector<double>& values);
   bool is_open() const { return out_.is_open(); }
   std::size_t rows() const { return rows_; }

@@ -115,8 +115,7 @@ void VtkSeries<D>::restore(StateReader& in) {
     const auto us = name.rfind('_'), dot = name.rfind('.');
     if (us == std::string::npos || dot == std::string::npos || dot < us + 2) continue;
     const std::string digits = name.substr(us + 1, dot - us - 1);
-    if (digits.size() > 12 || digits.find_first_not_of("0123456789") != std::string::npos)
-      continue;
+    if (digits.size() > 12 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
     if (std::stoll(digits) >= count_) std::filesystem::remove(f.path(), ec);
   }
   pvd_.write();

@@ -2,8 +2,8 @@
 // file references expanded. Each kind's reader (scene/, lab/, study/) checks the rest.
 #pragma once
 
-#include <string>
 #include <toml++/toml.h>
+#include <string>
 #include <vector>
 
 namespace geodem {

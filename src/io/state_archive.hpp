@@ -41,9 +41,8 @@ struct is_eigen_fixed<Eigen::Quaternion<S, O>> : std::is_arithmetic<S> {};
 // trivially copyable structs of those. A struct of Eigen members (not trivially copyable
 // by the standard's rules, though plain bytes) opts in by specialising IsPlainData.
 template <typename T>
-struct IsPlainData
-    : std::bool_constant<std::is_trivially_copyable_v<T> || archive_detail::is_eigen_fixed<T>::value> {
-};
+struct IsPlainData : std::bool_constant<std::is_trivially_copyable_v<T> ||
+                                        archive_detail::is_eigen_fixed<T>::value> {};
 template <typename T>
 inline constexpr bool kPlainData = IsPlainData<T>::value;
 
@@ -72,9 +71,7 @@ class StateWriter {
   std::string& bytes() { return bytes_; }
 
  private:
-  void append(const void* p, std::size_t n) {
-    bytes_.append(static_cast<const char*>(p), n);
-  }
+  void append(const void* p, std::size_t n) { bytes_.append(static_cast<const char*>(p), n); }
   std::string bytes_;
 };
 

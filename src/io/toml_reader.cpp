@@ -71,7 +71,8 @@ int source_line(const toml::table& root, const std::string& dotted_key) {
     if (const auto* t = n->as_table()) {
       n = t->get(part);
     } else if (const auto* a = n->as_array()) {
-      const bool digits = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+      const bool digits =
+          !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
       n = digits && part.size() < 10 ? a->get(std::stoul(part)) : nullptr;
     } else {
       n = nullptr;

@@ -255,17 +255,17 @@ void build_world(const SceneSettings& s, World<D>& world) {
     // Solid fraction asked for: beyond what random placement can reach, say so at once
     // rather than after trying (mean volume with radii uniform in mean (1 +- fuzz)).
     const double f2 = cl.fuzz * cl.fuzz;
-    const double grain_volume =
-        Dim<D>::volume(mean) * (D == 3 ? 1.0 + f2 : 1.0 + f2 / 3.0);
+    const double grain_volume = Dim<D>::volume(mean) * (D == 3 ? 1.0 + f2 : 1.0 + f2 / 3.0);
     const double solid = static_cast<double>(cl.count) * grain_volume / (hi - lo).prod();
     // Random sequential placement jams at about 38 % solid (spheres), 55 % (discs).
     if (solid > (D == 3 ? 0.40 : 0.56))
-      throw InputError(s.file, 0, "clouds." + std::to_string(c),
-                       "too dense: " + std::to_string(cl.count) + " grains of mean radius " +
-                           format_number(mean) + " m would fill " +
-                           format_number(std::round(solid * 1000.0) / 10.0) +
-                           " % of the cloud's box; random placement jams near 38 % (spheres) or 55 % "
-                           "(discs): enlarge the box, or lower the count or the radius");
+      throw InputError(
+          s.file, 0, "clouds." + std::to_string(c),
+          "too dense: " + std::to_string(cl.count) + " grains of mean radius " +
+              format_number(mean) + " m would fill " +
+              format_number(std::round(solid * 1000.0) / 10.0) +
+              " % of the cloud's box; random placement jams near 38 % (spheres) or 55 % "
+              "(discs): enlarge the box, or lower the count or the radius");
     std::vector<Sphere<D>> grains;
     try {
       grains = random_cloud<D>(lo, hi, cl.count, mean, cl.fuzz, rng, placed);

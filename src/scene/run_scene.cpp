@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "contacts/bonds.hpp"
@@ -84,7 +84,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
 
   // The runner's own state in a checkpoint, beside the world's.
   std::uint64_t bonds_created = 0;
-  double wall_before = 0.0;  // wall time of the run before the checkpoint resumed from
+  double wall_before = 0.0;   // wall time of the run before the checkpoint resumed from
   std::uint8_t finished = 0;  // the final outputs are written
   bool at_rest = false;
   std::string stop_reason = "end of duration";
@@ -142,7 +142,9 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   }
 
   const auto t0 = Clock::now();
-  auto elapsed = [&] { return wall_before + std::chrono::duration<double>(Clock::now() - t0).count(); };
+  auto elapsed = [&] {
+    return wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
+  };
   std::string last_checkpoint;
   std::uint64_t last_checkpoint_step = 0;
   double last_checkpoint_wall = elapsed();
@@ -151,8 +153,14 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     runner(bonds_created), runner(elapsed()), runner(finished), runner(stop_reason);
     vtk.save(runner);
     save_world_state(world, w);
-    Checkpoint c{"scene", D, w.step, w.time, s.resolved.dump(), std::move(runner.bytes()),
-                 std::move(world.bytes()), ""};
+    Checkpoint c{"scene",
+                 D,
+                 w.step,
+                 w.time,
+                 s.resolved.dump(),
+                 std::move(runner.bytes()),
+                 std::move(world.bytes()),
+                 ""};
     last_checkpoint = write_checkpoint(opt.out_dir, c, s.checkpoint.keep);
     last_checkpoint_step = w.step;
     last_checkpoint_wall = elapsed();
@@ -247,17 +255,17 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   progress.finish();
   const double wall_s = elapsed();
   if (status == "completed" && !(finished && w.step == first_step)) {
-    if (s.output.vtk && (s.output.vtk_every == 0 || w.step % s.output.vtk_every != 0))
-      vtk.write(w);
+    if (s.output.vtk && (s.output.vtk_every == 0 || w.step % s.output.vtk_every != 0)) vtk.write(w);
     finished = 1;
     if (s.checkpoint.enabled()) checkpoint();
   }
 
   nlohmann::json results;
   results["status"] = status;
-  results["stop_reason"] = status == "completed"     ? stop_reason
-                           : status == "interrupted" ? "signal " + std::to_string(interrupt_signal())
-                                                     : message;
+  results["stop_reason"] = status == "completed" ? stop_reason
+                           : status == "interrupted"
+                               ? "signal " + std::to_string(interrupt_signal())
+                               : message;
   if (!last_checkpoint.empty()) results["checkpoint"] = last_checkpoint;
   results["time"] = w.time;
   results["steps"] = w.step;

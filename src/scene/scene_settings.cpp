@@ -26,8 +26,10 @@ Material read_material(TableReader& t, const std::string& fallback_name) {
   auto stiffness = [&t](const std::string& key, double fallback) {
     const double v = t.positive(key, fallback);
     if (v > 1e15)
-      t.fail(key, "expected a stiffness of at most 1e15 (stiffer than any mineral; the time step "
-                  "would vanish), got " + format_number(v));
+      t.fail(key,
+             "expected a stiffness of at most 1e15 (stiffer than any mineral; the time step "
+             "would vanish), got " +
+                 format_number(v));
     return v;
   };
   Material m;

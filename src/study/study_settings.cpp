@@ -54,7 +54,6 @@ std::string quantity(TableReader& t) {
   return t.choice("quantity", "peak_q", study_quantities());
 }
 
-
 }  // namespace
 
 SeriesSettings read_series(const toml::table& root, const std::string& file) {

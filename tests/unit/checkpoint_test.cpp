@@ -179,7 +179,8 @@ class CheckpointFiles : public ::testing::Test {
 TEST_F(CheckpointFiles, KeepsTheNewestAndReadsThemBack) {
   for (std::uint64_t s : {100, 200, 300}) write_checkpoint(dir(), make(s), 2);
   std::size_t files = 0;
-  for (const auto& e : fs::directory_iterator(checkpoint_folder(dir()))) files += e.is_regular_file();
+  for (const auto& e : fs::directory_iterator(checkpoint_folder(dir())))
+    files += e.is_regular_file();
   EXPECT_EQ(files, 2u);  // the oldest pruned, no temporary file left
   const Checkpoint c = load_latest_checkpoint(dir(), nullptr);
   EXPECT_EQ(c.step, 300u);
