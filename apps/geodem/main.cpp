@@ -164,6 +164,9 @@ int run_main(int argc, char** argv) {
       throw geodem::InputError(scenario, 0, "kind",
                                "only studies (series, rate_study, calibrate) share their runs "
                                "across MPI ranks; run this scenario without mpirun");
+    // Single runs stop on SIGINT/SIGTERM after the step in progress (a scene with a
+    // checkpoint); studies keep the default (their finished runs are reused on rerunning).
+    geodem::install_interrupt_handlers();
     if (l.kind == "triaxial") {
       const geodem::TriaxialSettings t = geodem::read_triaxial(l.root, scenario);
       if (*check) {
@@ -204,8 +207,6 @@ int run_main(int argc, char** argv) {
                   s.dimension);
       return kOk;
     }
-    // Scene runs stop on SIGINT/SIGTERM after the step in progress, with a checkpoint.
-    geodem::install_interrupt_handlers();
     const auto summary = geodem::run_scene(s, opt);
     if (s.output.plots) geodem::make_plots(out_dir, quiet);
     if (!quiet)

@@ -19,4 +19,9 @@ struct Interrupted {
   std::string checkpoint;  // path of the checkpoint written, or empty
 };
 
+// For run loops without checkpoints (lab tests): after a whole step, stop on a signal.
+inline void stop_if_interrupted() {
+  if (const int sig = interrupt_signal()) throw Interrupted{sig, ""};
+}
+
 }  // namespace geodem

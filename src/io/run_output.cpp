@@ -91,6 +91,15 @@ void VtkSeries<D>::write(const World<D>& world) {
   ++count_;
 }
 
+void write_interrupted_summary(const std::string& dir, const std::string& kind,
+                               const nlohmann::json& scenario, int signal, int threads) {
+  const nlohmann::json results = {
+      {"status", "interrupted"},
+      {"stop_reason", "signal " + std::to_string(signal) +
+                          "; this kind writes no checkpoint yet: run it again to restart"}};
+  write_run_summary(dir, kind, "interrupted", scenario, results, {{"threads", threads}});
+}
+
 template <int D>
 void VtkSeries<D>::save(StateWriter& out) const {
   out(count_);

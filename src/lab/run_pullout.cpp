@@ -24,6 +24,7 @@
 #include "core/random.hpp"
 #include "core/step.hpp"
 #include "integrate/critical_timestep.hpp"
+#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "lab/anchorage.hpp"
@@ -153,6 +154,7 @@ struct Pullout {
     for (std::uint64_t k = 1;; ++k) {
       w.measure_this_step = k % every == 0;
       step(w);
+      stop_if_interrupted();
       ++total_steps;
       if (!w.measure_this_step) continue;
       const double unb = unbalanced_force_ratio(w);
@@ -328,7 +330,8 @@ void write_states(const std::string& path_grains, const std::string& path_sheet,
 
 }  // namespace
 
-nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
+namespace {
+nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   prepare_output_dir(opt.out_dir);
@@ -420,6 +423,7 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
     const double next_d = clamp0.x() - (S.pos[0].x() - s.rate * w.dt);
     w.measure_this_step = next_d >= next_record || next_d >= s.max_displacement;
     step(w);
+    stop_if_interrupted();
     ++run.total_steps;
     displacement = clamp0.x() - S.pos[0].x();
     tension_sum += S.tension[0];
@@ -482,6 +486,16 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
   const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
   return write_run_summary(opt.out_dir, "pullout", "completed", s.resolved, results,
                            timing_json(w, wall_s, run.total_steps, opt.threads));
+}
+}  // namespace
+
+nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
+  try {
+    return run_pullout_test(s, opt);
+  } catch (const Interrupted& i) {
+    write_interrupted_summary(opt.out_dir, "pullout", s.resolved, i.signal, opt.threads);
+    throw;
+  }
 }
 
 }  // namespace geodem

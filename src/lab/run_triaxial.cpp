@@ -16,6 +16,7 @@
 #include "core/random.hpp"
 #include "core/step.hpp"
 #include "core/text.hpp"
+#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "lab/lab_box.hpp"
@@ -71,6 +72,7 @@ struct Lab {
     for (std::uint64_t k = 1; k <= max_steps; ++k) {
       w.measure_this_step = k % every == 0;
       step(w);
+      stop_if_interrupted();
       ++total_steps;
       if (w.measure_this_step) {
         const double unb = unbalanced_force_ratio(w);
@@ -262,6 +264,7 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
       const double next_eps = eps + 2.0 * s.strain_rate * w.dt;
       w.measure_this_step = next_eps >= next_record || next_eps >= s.max_axial_strain;
       step(w);
+      stop_if_interrupted();
       ++lab.total_steps;
       eps = lab.box.strain(w, axial, ref);
       if (w.measure_this_step && (eps >= next_record || eps >= s.max_axial_strain)) {
@@ -351,7 +354,13 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
 }  // namespace
 
 nlohmann::json run_triaxial(const TriaxialSettings& settings, const RunOptions& options) {
-  return settings.dimension == 2 ? run<2>(settings, options) : run<3>(settings, options);
+  try {
+    return settings.dimension == 2 ? run<2>(settings, options) : run<3>(settings, options);
+  } catch (const Interrupted& i) {
+    write_interrupted_summary(options.out_dir, "triaxial", settings.resolved, i.signal,
+                              options.threads);
+    throw;
+  }
 }
 
 }  // namespace geodem

@@ -487,6 +487,20 @@ class CheckpointTest(unittest.TestCase):
     def test_sigterm_checkpoints_and_resume_is_bitwise(self):
         self.stop_and_resume(signal.SIGTERM, stops=3, seed=2)
 
+    def test_sigterm_stops_a_lab_test_cleanly(self):
+        # The lab kinds write no checkpoint yet, but stop after a whole step with their
+        # outputs and a summary that says so.
+        out = self.dir / "biaxial"
+        p = subprocess.Popen([GEODEM, "run", str(ROOT / "examples" / "biaxial2d" / "scenario.toml"),
+                              "--out", str(out), "--quiet"], stderr=subprocess.PIPE, text=True)
+        time.sleep(1.5)
+        p.send_signal(signal.SIGTERM)
+        err = p.communicate(timeout=120)[1]
+        self.assertEqual(p.returncode, 143, err)
+        s = json.loads((out / "summary.json").read_text())
+        self.assertEqual(s["status"], "interrupted")
+        self.assertIn("signal 15", s["results"]["stop_reason"])
+
     def test_damaged_newest_checkpoint_falls_back_to_the_previous(self):
         out = self.dir / "damaged"
         shutil.copytree(self.ref, out)
