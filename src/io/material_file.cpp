@@ -72,9 +72,11 @@ void expand_material_reference(toml::table& root, const std::string& kind,
   const auto name = (*mat)[key].value<std::string>();
   if (!name) throw InputError(scenario_file, line(key), cat(where, key), "expected a string");
   fs::path path;
+  std::error_code exists_error;  // a name the system cannot take is not found, not a crash
   if (std::string(key) == "preset") {
     path = fs::path(preset_dir()) / cat(*name, ".toml");
-    if (!fs::exists(path)) {
+    const bool plain = !name->empty() && name->find_first_of("/\\") == std::string::npos;
+    if (!plain || !fs::is_regular_file(path, exists_error)) {
       std::string known;
       std::error_code ec;
       for (const auto& e : fs::directory_iterator(preset_dir(), ec))
@@ -85,7 +87,7 @@ void expand_material_reference(toml::table& root, const std::string& kind,
   } else {
     path = fs::path(*name);
     if (path.is_relative()) path = fs::path(scenario_file).parent_path() / path;
-    if (!fs::exists(path))
+    if (!fs::is_regular_file(path, exists_error))
       throw InputError(scenario_file, line(key), cat(where, key),
                        cat("material file ", path.string(), " not found"));
   }

@@ -294,7 +294,8 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     if (name.empty()) t.fail("file", "missing; expected the path of a text file of grains");
     const std::filesystem::path p(name);
     f.path = p.is_absolute() ? name : (std::filesystem::path(file).parent_path() / p).string();
-    if (!std::filesystem::exists(f.path)) t.fail("file", "file not found: " + f.path);
+    std::error_code ec;  // a name the system cannot take is not found, not a crash
+    if (!std::filesystem::is_regular_file(f.path, ec)) t.fail("file", "file not found: " + f.path);
     const std::vector<std::string> fallback =
         D == 3 ? std::vector<std::string>{"x", "y", "z", "radius"}
                : std::vector<std::string>{"x", "y", "radius"};
