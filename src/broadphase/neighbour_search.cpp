@@ -203,7 +203,7 @@ void build_neighbour_list(World<D>& world) {
   // Peak memory: during a build the old rows (for their history) and the new ones are both
   // resident. The force stage's crossing scratch is released first so that it does not add
   // to that peak (it grows back in one step), and the old rows go when the build ends.
-  for (auto& c : world.slab_crossing) std::vector<SlabCrossing<D>>().swap(c);
+  world.slab_crossing.release();
   NeighbourList<D> old;
   old.swap_rows(L);
   const bool have_old = old.start.size() == n + 1;

@@ -57,7 +57,7 @@ void add_stats(ContactStats<D>& a, const ContactStats<D>& b) {
 // for them).
 template <int D, bool Measure, bool Extras>
 void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D>& t,
-               std::vector<SlabCrossing<D>>& crossing) {
+               typename SlabCrossings<SlabCrossing<D>>::Writer crossing) {
   using Vec = typename Dim<D>::Vec;
   using Rot = typename Dim<D>::Rot;
   auto& P = world.particles;
@@ -150,7 +150,7 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
         force[j] += f;
         torque[j] += tj;
       } else {
-        crossing.push_back({f, tj, j});
+        crossing.push({f, tj, j});
       }
       if constexpr (Measure) {
         t.stats.fabric_stress += d * f.transpose();
@@ -168,19 +168,18 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
 template <int D, bool Measure, bool Extras>
 void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   SlabTally<D>* tally = tallies.data();
-  auto* crossing = world.slab_crossing.data();
+  auto& crossing = world.slab_crossing;
+  crossing.prepare(world.particles.size());
   for_slabs(world.particles.size(), world.threads,
             [&](std::size_t s, std::size_t first, std::size_t last) {
-              crossing[s].clear();
-              pair_rows<D, Measure, Extras>(world, first, last, tally[s], crossing[s]);
+              pair_rows<D, Measure, Extras>(world, first, last, tally[s], crossing.slab(s));
             });
-  // The crossing forces, slab by slab.
+  // The crossing forces, each grain's in slab order.
   auto& P = world.particles;
-  for (std::size_t s = 0; s < slab_count(P.size()); ++s)
-    for (const auto& c : crossing[s]) {
-      P.force[c.body] += c.a;
-      P.torque[c.body] += c.b;
-    }
+  crossing.apply(world.threads, [&P](const SlabCrossing<D>& c) {
+    P.force[c.body] += c.a;
+    P.torque[c.body] += c.b;
+  });
 }
 
 template <int D, bool Measure, bool Extras>
@@ -266,7 +265,6 @@ void compute_contact_forces(World<D>& world) {
   const std::size_t slabs = slab_count(world.particles.size());
   const std::size_t nw = world.walls.size();
   if (tallies.size() < slabs) tallies.resize(slabs);
-  if (world.slab_crossing.size() < slabs) world.slab_crossing.resize(slabs);
   for (std::size_t s = 0; s < slabs; ++s) {
     auto& t = tallies[s];
     t.stats = ContactStats<D>{};

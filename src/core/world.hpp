@@ -12,6 +12,7 @@
 #include "clumps/clumps.hpp"
 #include "contacts/neighbour_list.hpp"
 #include "core/dim.hpp"
+#include "core/parallel.hpp"
 #include "materials/material.hpp"
 #include "particles/particles.hpp"
 #include "structures/spar_chains.hpp"
@@ -98,7 +99,7 @@ struct World {
   int threads = 1;
   // Per-slab crossing contributions of the force stage and the automatic time step,
   // kept between steps so that the step allocates nothing (scratch, not state).
-  mutable std::vector<std::vector<SlabCrossing<D>>> slab_crossing;
+  mutable SlabCrossings<SlabCrossing<D>> slab_crossing;
 
   double time = 0.0;
   std::uint64_t step = 0;

@@ -129,7 +129,7 @@ template <int D>
 void load_world_state(StateReader& in, World<D>& world) {
   visit(in, world);
   check_sizes(world);
-  world.slab_crossing.clear();
+  world.slab_crossing.release();
 }
 
 template void save_world_state<2>(StateWriter&, const World<2>&);

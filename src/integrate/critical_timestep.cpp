@@ -88,20 +88,18 @@ double critical_timestep(const World<D>& world) {
   // Slabs side by side, as in the force stage (contacts/contact_forces.cpp): a share for a
   // body outside the slab (a grain of a later slab, a clump) is added afterwards, in slab
   // order, so that the sums, and dt, do not depend on the thread count.
-  const std::size_t slabs = have_list ? slab_count(n) : 0;
-  if (world.slab_crossing.size() < slabs) world.slab_crossing.resize(slabs);
-  auto* crossing = world.slab_crossing.data();
+  auto& crossing = world.slab_crossing;
+  crossing.prepare(have_list ? n : 0);
   for_slabs(
       have_list ? n : 0, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
-        auto& out = crossing[s];
-        out.clear();
+        auto out = crossing.slab(s);
         auto add = [&](std::size_t b, const Vec& nrm, double kn, double kt, const Vec& l, double kr,
                        double ktw) {
           const SlabCrossing<D> c = DiagonalStiffness<D>::share(b, nrm, kn, kt, l, kr, ktw);
           if (b >= first && b < last) {
             K.add(c);
           } else {
-            out.push_back(c);
+            out.push(c);
           }
         };
         for (std::size_t i = first; i < last; ++i) {
@@ -167,8 +165,7 @@ double critical_timestep(const World<D>& world) {
           }
         }
       });
-  for (std::size_t s = 0; s < slabs; ++s)
-    for (const auto& c : crossing[s]) K.add(c);
+  crossing.apply(world.threads, [&K](const SlabCrossing<D>& c) { K.add(c); });
 
   // dt^2 = 2 x the smallest of m/K_t and I/K_r (the sqrt(2) of yade: the critical
   // step of a grain on a spring whose other end moves in antiphase).
