@@ -5,8 +5,9 @@
 // goes to both grains. The grains are cut into slabs: fixed ranges of indices whose
 // length depends only on the grain count. The slabs run side by side; each runs its
 // rows in index order. A force on a grain of the same slab is added at once; a force
-// on a grain of a later slab (its index is higher) is kept in the slab's list of
-// crossing forces, which are added afterwards, slab by slab, in order. Every grain
+// on a grain of a later slab (its index is higher) is kept in the slab's bucket for that
+// later slab; the buckets are added afterwards, target slabs side by side, each target's
+// in source-slab order (SlabCrossings, core/parallel.hpp). Every grain
 // thus sums its forces in one fixed order: first those from its own slab's rows (by
 // row), then those from earlier slabs (by slab, then row). Pairs listed but apart add
 // nothing, so the list's skin and rebuilds do not change the order either. Sums over
