@@ -7,12 +7,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <random>
 
-#include "contacts/bonds.hpp"
 #include "core/world_state.hpp"
 #include "io/checkpoint.hpp"
-#include "test_util.hpp"
+#include "pressed_packing.hpp"
 
 namespace geodem::test {
 namespace {
@@ -23,41 +21,11 @@ template <typename T>
 class WorldCheckpoint : public ::testing::Test {};
 TYPED_TEST_SUITE(WorldCheckpoint, Dims, DimNames);
 
-constexpr double kR = 1e-3, kRho = 2600.0;
-
-// Grains pressed together in a box, so that they move, touch, rebuild their list and (with
-// extras) roll and break bonds. Everything here comes from the "scenario": the part a
-// resumed run rebuilds before loading the checkpoint.
+// Everything here comes from the "scenario": the part a resumed run rebuilds before loading
+// the checkpoint.
 template <int D>
 World<D> make_world(bool extras) {
-  World<D> w;
-  const double m0 = kRho * Dim<D>::volume(kR);
-  const double kn = m0 * 9.81 / (1e-4 * kR);
-  Material gm = linear_material(kn, 0.5 * kn, 0.5, 0.3, kRho);
-  if (extras) {
-    gm.rolling_friction = 0.2;
-    gm.twisting_friction = 0.1;
-    const double section = D == 2 ? 2.0 * kR : 3.14159 * kR * kR;
-    gm.normal_cohesion = gm.shear_cohesion = 5e-6 * kn / section;
-  }
-  const auto grain = add_material(w, gm);
-  const auto wall = add_material(w, linear_material(kn, 0.5 * kn, 0.5, 0.3, kRho, "wall"));
-  const double spacing = 1.96 * kR;
-  const int side = D == 2 ? 30 : 8;
-  Vec<D> hi = Vec<D>::Constant(side * spacing);
-  hi[1] = 20.0 * side * spacing;
-  add_box(w, Vec<D>(Vec<D>::Zero()), hi, wall, wall);
-  w.resolve_pair_laws();
-  std::mt19937_64 rng(5);
-  fill_lattice(w, Vec<D>(Vec<D>::Zero()), hi, spacing, 0.98 * kR, kR, 0.01 * kR, 0.3, kRho, grain,
-               rng, 1500);
-  if (extras) create_bonds(w, 0.0);
-  w.gravity = vec<D>(0.0, -9.81, 0.0);
-  w.auto_dt = true;
-  w.dt_safety = 0.3;
-  w.dt_update_interval = 10;
-  w.sort_interval = 3;
-  return w;
+  return pressed_packing<D>(extras, 1500, D == 2 ? 30 : 8, 20.0, 5);
 }
 
 template <int D>

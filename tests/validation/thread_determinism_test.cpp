@@ -8,11 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <random>
 
-#include "contacts/bonds.hpp"
 #include "core/parallel.hpp"
-#include "test_util.hpp"
+#include "pressed_packing.hpp"
 
 namespace geodem::test {
 namespace {
@@ -21,42 +19,9 @@ template <typename T>
 class ThreadDeterminism : public ::testing::Test {};
 TYPED_TEST_SUITE(ThreadDeterminism, Dims, DimNames);
 
-constexpr double kR = 1e-3, kRho = 2600.0;
-
 template <int D>
 World<D> make_packing(bool extras, int threads) {
-  World<D> w;
-  const double m0 = kRho * Dim<D>::volume(kR);
-  const double kn = m0 * 9.81 / (1e-4 * kR);
-  Material gm = linear_material(kn, 0.5 * kn, 0.5, 0.3, kRho);
-  if (extras) {
-    gm.rolling_friction = 0.2;
-    gm.twisting_friction = 0.1;
-    // Weak bonds (a strength of kn x 5 um over the bond's section): many break.
-    const double section = D == 2 ? 2.0 * kR : 3.14159 * kR * kR;
-    gm.normal_cohesion = gm.shear_cohesion = 5e-6 * kn / section;
-  }
-  const Material wm = linear_material(kn, 0.5 * kn, 0.5, 0.3, kRho, "wall");
-  const auto grain = add_material(w, gm);
-  const auto wall = add_material(w, wm);
-  // Lattice spacing below the diameter: every grain starts pressed against its neighbours.
-  const double spacing = 1.96 * kR;
-  const std::size_t n = 12000;
-  const int side = D == 2 ? 100 : 22;
-  Vec<D> hi = Vec<D>::Constant(side * spacing);
-  hi[1] = 40.0 * side * spacing;
-  add_box(w, Vec<D>(Vec<D>::Zero()), hi, wall, wall);
-  w.resolve_pair_laws();
-  std::mt19937_64 rng(11);
-  fill_lattice(w, Vec<D>(Vec<D>::Zero()), hi, spacing, 0.98 * kR, kR, 0.01 * kR, 0.3, kRho, grain,
-               rng, n);
-  if (extras) create_bonds(w, 0.0);
-  w.gravity = vec<D>(0.0, -9.81, 0.0);
-  // The automatic time step, every 10 steps: its stiffness sums are taken on slabs too.
-  w.auto_dt = true;
-  w.dt_safety = 0.3;
-  w.dt_update_interval = 10;
-  w.sort_interval = 3;
+  World<D> w = pressed_packing<D>(extras, 12000, D == 2 ? 100 : 22, 40.0, 11);
   w.threads = threads;
   return w;
 }
