@@ -107,6 +107,14 @@ std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, in
   return path;
 }
 
+void discard_checkpoints_after(const std::string& out_dir, std::uint64_t step) {
+  for (const auto& f : checkpoint_files(checkpoint_folder(out_dir))) {
+    if (static_cast<std::uint64_t>(step_of(f.filename().string())) <= step) break;  // newest first
+    std::error_code ec;
+    fs::remove(f, ec);
+  }
+}
+
 Checkpoint read_checkpoint(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CheckpointError("cannot be read");

@@ -45,6 +45,10 @@ std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, in
 // `skipped` ("name: reason"). Throws CheckpointError when there is none.
 Checkpoint load_latest_checkpoint(const std::string& out_dir, std::vector<std::string>* skipped);
 
+// Deletes the checkpoint files of steps after `step` (a resumed run's abandoned future,
+// such as a damaged newest file), so that pruning keeps the resumed run's own files.
+void discard_checkpoints_after(const std::string& out_dir, std::uint64_t step);
+
 // Reads and verifies one file (CheckpointError if it is not a whole, valid checkpoint).
 Checkpoint read_checkpoint(const std::string& path);
 

@@ -69,6 +69,7 @@ Checkpoint resume_checkpoint(const SceneSettings& s, const std::string& out_dir,
                      "differs from the setting of the run being resumed (" + c.path +
                          "); only time.duration, time.steps, [checkpoint] and [stop] may change");
   }
+  discard_checkpoints_after(out_dir, c.step);
   std::fprintf(stderr, "resuming from %s (step %llu, t = %g s)\n", c.path.c_str(),
                static_cast<unsigned long long>(c.step), c.time);
   return c;

@@ -515,6 +515,10 @@ class CheckpointTest(unittest.TestCase):
         self.assertIn("checksum", r.stderr)
         self.assertIn(files[0].name, r.stderr)  # resumed from the previous one
         self.assertEqual(history_without_wall_time(self.ref), history_without_wall_time(out))
+        # The damaged file was discarded; the resumed run wrote its own final checkpoint.
+        self.assertEqual(sorted(p.name for p in (out / "checkpoint").glob("checkpoint_*.bin")),
+                         [f.name for f in files])
+        self.assertNotEqual(newest.read_bytes(), bytes(data))
         # Cut short, then nothing valid at all: a clear refusal.
         files[0].write_bytes(files[0].read_bytes()[:100])
         for f in (out / "checkpoint").glob("checkpoint_*.bin"):
