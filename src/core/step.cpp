@@ -110,13 +110,15 @@ void check_finite(const World<D>& world) {
   // Runaway motion: a contact that closes or slides by half a radius in one step is past
   // what the contact law resolves (the kinetic energy then grows without bound). Grains in
   // free flight, or moving together, may be that fast. Candidates first: a relative speed
-  // that large needs one of the two grains at half of it.
+  // that large needs one of the two grains at half of it (against the smallest radius).
   std::vector<std::uint8_t> fast;
   auto too_fast = [&](const typename Dim<D>::Vec& v, double r) {
     return v.norm() * world.dt > 0.5 * r;
   };
+  double rmin = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < P.size(); ++i) rmin = std::min(rmin, P.radius[i]);
   for (std::size_t i = 0; i < P.size(); ++i)
-    if (P.vel[i].norm() * world.dt > 0.25 * P.radius[i]) {
+    if (P.vel[i].norm() * world.dt > 0.25 * rmin) {
       if (fast.empty()) fast.assign(P.size(), 0);
       fast[i] = 1;
     }

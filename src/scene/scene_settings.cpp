@@ -23,8 +23,7 @@ double friction_from(TableReader& t, double fallback) {
 
 Material read_material(TableReader& t, const std::string& fallback_name) {
   // Stiffnesses beyond any mineral's (1e15 Pa or N/m) only make the time step vanish.
-  auto stiffness = [&t](const std::string& key, double fallback) {
-    const double v = t.positive(key, fallback);
+  auto capped = [&t](const std::string& key, double v) {
     if (v > 1e15)
       t.fail(key,
              "expected a stiffness of at most 1e15 (stiffer than any mineral; the time step "
@@ -44,16 +43,15 @@ Material read_material(TableReader& t, const std::string& fallback_name) {
     if (t.has("kn") && t.has("young"))
       t.fail("kn", "give either constant stiffness 'kn' or contact modulus 'young', not both");
     if (t.has("kn")) {
-      m.kn = stiffness("kn", 0.0);
-      m.kt = t.has("kt") ? t.non_negative("kt", 0.0) : -1.0;
-      if (m.kt > 0.0) stiffness("kt", 0.0);
+      m.kn = capped("kn", t.positive("kn", 0.0));
+      m.kt = t.has("kt") ? capped("kt", t.non_negative("kt", 0.0)) : -1.0;
       m.kt_over_kn = t.non_negative("kt_over_kn", 0.5);
     } else {
-      m.young = stiffness("young", 1e7);
+      m.young = capped("young", t.positive("young", 1e7));
       m.kt_over_kn = t.non_negative("kt_over_kn", 0.5);
     }
   } else {
-    m.young = stiffness("young", 1e7);
+    m.young = capped("young", t.positive("young", 1e7));
     m.poisson = t.in_range("poisson", 0.25, -0.99, 0.499);
   }
   m.rolling_friction = t.non_negative("rolling_friction", 0.0);
