@@ -117,7 +117,7 @@ int run_main(int argc, char** argv) {
   run->add_flag("--quiet", quiet, "no progress display");
   run->add_option("--resume", resume_dir,
                   "continue the run whose output folder is DIR from its newest valid checkpoint "
-                  "(scene kind; outputs stay in DIR)");
+                  "(scene, triaxial, pullout; outputs stay in DIR)");
 
   auto* check = app.add_subcommand("check", "validate a scenario without running it");
   check->add_option("scenario", scenario, "scenario file (TOML)")->required();
@@ -151,10 +151,10 @@ int run_main(int argc, char** argv) {
       if (run->count("--out") && out_dir != resume_dir)
         throw geodem::InputError("", 0, "--out",
                                  "a resumed run writes to its own folder; give --resume DIR alone");
-      if (l.kind != "scene")
+      if (l.kind != "scene" && l.kind != "triaxial" && l.kind != "pullout")
         throw geodem::InputError(scenario, 0, "kind",
-                                 "--resume: only scene runs write checkpoints so far; a study "
-                                 "resumes by rerunning it into the same folder");
+                                 "--resume: a study writes no checkpoints; it resumes by "
+                                 "rerunning it into the same folder (its finished runs are kept)");
       opt.out_dir = out_dir = resume_dir;
       opt.resume = true;
     }
@@ -164,8 +164,8 @@ int run_main(int argc, char** argv) {
       throw geodem::InputError(scenario, 0, "kind",
                                "only studies (series, rate_study, calibrate) share their runs "
                                "across MPI ranks; run this scenario without mpirun");
-    // Single runs stop on SIGINT/SIGTERM after the step in progress (a scene with a
-    // checkpoint); studies keep the default (their finished runs are reused on rerunning).
+    // Single runs stop on SIGINT/SIGTERM after the step in progress, with a checkpoint;
+    // studies keep the default (their finished runs are reused on rerunning).
     geodem::install_interrupt_handlers();
     if (l.kind == "triaxial") {
       const geodem::TriaxialSettings t = geodem::read_triaxial(l.root, scenario);

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "core/world.hpp"
+#include "io/state_archive.hpp"
 #include "lab/lab_box.hpp"
 
 namespace geodem {
@@ -35,6 +36,8 @@ class RadiusGrowth : public Controller<D> {
     scale(w, m);
   }
   bool reached() const { return reached_; }
+  void save_state(StateWriter& out) const override { out(reached_); }
+  void load_state(StateReader& in) override { in(reached_); }
 
   // Multiplies every grain radius by m.
   static void scale(World<D>& w, double m) {

@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "core/world.hpp"
+#include "io/state_archive.hpp"
 #include "lab/lab_box.hpp"
 
 namespace geodem {
@@ -30,6 +31,8 @@ class StressServo : public Controller<D> {
 
   void set_target(double t) { target_ = t; }
   double target() const { return target_; }
+  void save_state(StateWriter& out) const override { out(target_), out(sum_); }
+  void load_state(StateReader& in) override { in(target_), in(sum_); }
 
   void apply(World<D>& w) override {
     const double sigma = box_.stress(w, axis_);

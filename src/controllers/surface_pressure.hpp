@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "core/world.hpp"
+#include "io/state_archive.hpp"
 
 namespace geodem {
 
@@ -18,6 +19,10 @@ class SurfacePressure : public Controller<D> {
 
   // Pressure the grains exert on the plate (Pa).
   double pressure(const World<D>& w) const { return w.walls[wall_].normal_stress(); }
+  // The speed cap is set from the time step when the plate is placed: a run rebuilt
+  // for resuming takes it from the checkpoint.
+  void save_state(StateWriter& out) const override { out(vmax_); }
+  void load_state(StateReader& in) override { in(vmax_); }
 
   void apply(World<D>& w) override {
     auto& wall = w.walls[wall_];

@@ -22,13 +22,19 @@ namespace geodem {
 
 // Boundary controllers (servo walls, strain control, radius growth...) act once per
 // step after the contact forces, before integration.
+// A controller whose state evolves (a servo's integral term) saves it in checkpoints;
+// its settings come from the scenario when the run is rebuilt.
 template <int D>
 struct World;
+class StateWriter;
+class StateReader;
 template <int D>
 class Controller {
  public:
   virtual ~Controller() = default;
   virtual void apply(World<D>& world) = 0;
+  virtual void save_state(StateWriter&) const {}
+  virtual void load_state(StateReader&) {}
 };
 
 enum class Stage : int {

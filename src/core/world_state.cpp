@@ -74,6 +74,12 @@ void visit(Archive& a, World<D>& w) {
   a(w.overlap_limit), a(w.contact_extras), a(w.broken_bonds), a(w.measure_this_step);
   a(w.stats), a(w.stage_seconds);
   same_count(a, w.controllers.size(), "controllers");
+  for (auto& c : w.controllers) {
+    if constexpr (Archive::kLoading)
+      c->load_state(a);
+    else
+      c->save_state(a);
+  }
 }
 
 // Sizes that the step relies on: every per-grain array as long as the grains, the list's

@@ -39,8 +39,9 @@ void HistoryCsv::open(const std::string& path, const std::vector<std::string>& c
   out_.flush();
 }
 
-void HistoryCsv::resume(const std::string& path, const std::vector<std::string>& columns,
-                        double last_step) {
+template <class Keep>
+std::size_t HistoryCsv::reopen(const std::string& path, const std::vector<std::string>& columns,
+                               Keep keep) {
   std::string header;
   for (std::size_t k = 0; k < columns.size(); ++k) header += (k ? "," : "") + columns[k];
   std::ifstream in(path, std::ios::binary);
@@ -54,8 +55,7 @@ void HistoryCsv::resume(const std::string& path, const std::vector<std::string>&
   while (std::getline(in, line) && !in.eof()) {
     if (static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1 != columns.size())
       break;
-    const double step = std::strtod(line.c_str(), nullptr);
-    if (!(step <= last_step)) break;
+    if (!keep(line, rows)) break;
     kept += line + '\n';
     ++rows;
   }
@@ -65,6 +65,21 @@ void HistoryCsv::resume(const std::string& path, const std::vector<std::string>&
   if (!out_) throw std::runtime_error("cannot write " + path);
   columns_ = columns.size();
   rows_ = rows;
+  return rows;
+}
+
+void HistoryCsv::resume(const std::string& path, const std::vector<std::string>& columns,
+                        double last_step) {
+  reopen(path, columns, [last_step](const std::string& line, std::size_t) {
+    return std::strtod(line.c_str(), nullptr) <= last_step;
+  });
+}
+
+void HistoryCsv::resume_rows(const std::string& path, const std::vector<std::string>& columns,
+                             std::size_t rows) {
+  if (reopen(path, columns, [rows](const std::string&, std::size_t i) { return i < rows; }) != rows)
+    throw std::runtime_error("cannot resume: " + path + " has fewer rows than the checkpoint's " +
+                             std::to_string(rows));
 }
 
 void HistoryCsv::row(const std::vector<double>& values) {

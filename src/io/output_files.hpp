@@ -21,11 +21,18 @@ class HistoryCsv {
   // (its first column): later rows and a last row cut short are dropped, so that the
   // resumed run appends exactly the rows an uninterrupted run would have written.
   void resume(const std::string& path, const std::vector<std::string>& columns, double last_step);
+  // The same for a file whose first column is not the step: keeps its first `rows` rows.
+  void resume_rows(const std::string& path, const std::vector<std::string>& columns,
+                   std::size_t rows);
   void row(const std::vector<double>& values);
   bool is_open() const { return out_.is_open(); }
   std::size_t rows() const { return rows_; }
 
  private:
+  // Keeps the whole rows for which keep(row text, row index) holds, up to the first that
+  // fails; returns how many.
+  template <class Keep>
+  std::size_t reopen(const std::string& path, const std::vector<std::string>& columns, Keep keep);
   std::ofstream out_;
   std::size_t columns_ = 0, rows_ = 0;
 };

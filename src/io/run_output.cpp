@@ -92,11 +92,11 @@ void VtkSeries<D>::write(const World<D>& world) {
 }
 
 void write_interrupted_summary(const std::string& dir, const std::string& kind,
-                               const nlohmann::json& scenario, int signal, int threads) {
-  const nlohmann::json results = {
-      {"status", "interrupted"},
-      {"stop_reason", "signal " + std::to_string(signal) +
-                          "; this kind writes no checkpoint yet: run it again to restart"}};
+                               const nlohmann::json& scenario, int signal, int threads,
+                               const std::string& checkpoint) {
+  nlohmann::json results = {{"status", "interrupted"},
+                            {"stop_reason", "signal " + std::to_string(signal)}};
+  if (!checkpoint.empty()) results["checkpoint"] = checkpoint;
   write_run_summary(dir, kind, "interrupted", scenario, results, {{"threads", threads}});
 }
 

@@ -29,10 +29,11 @@ nlohmann::json write_run_summary(const std::string& dir, const std::string& kind
                                  const std::string& status, const nlohmann::json& scenario,
                                  const nlohmann::json& results, const nlohmann::json& timing);
 
-// summary.json of a run stopped by a signal that writes no checkpoint (the lab tests):
-// status "interrupted"; the history and VTK files written so far are whole.
+// summary.json of a lab test stopped by a signal: status "interrupted", the checkpoint
+// written (resume with --resume); the history and VTK files written so far are whole.
 void write_interrupted_summary(const std::string& dir, const std::string& kind,
-                               const nlohmann::json& scenario, int signal, int threads);
+                               const nlohmann::json& scenario, int signal, int threads,
+                               const std::string& checkpoint);
 
 // Timing block of summary.json from a world's counters.
 template <int D>

@@ -119,6 +119,10 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
     s.columns = static_cast<int>(o->integer("columns", 24, 1, 10000));
     o->finish();
   }
+  if (auto t = r.table("checkpoint")) {
+    s.checkpoint = read_checkpoint_spec(*t);
+    t->finish();
+  }
   r.finish();
   return s;
 }

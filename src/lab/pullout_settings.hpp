@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "clumps/grain_mix.hpp"
+#include "io/checkpoint.hpp"
 #include "io/toml_reader.hpp"
 #include "materials/material.hpp"
 
@@ -72,7 +73,8 @@ struct PulloutSettings {
   std::uint64_t max_settle_steps = 400'000;
   // [output]
   bool vtk = true, plots = true;
-  int columns = 24;  // colour bands across the box
+  CheckpointSpec checkpoint;  // [checkpoint]
+  int columns = 24;           // colour bands across the box
   nlohmann::json resolved;
 };
 

@@ -23,10 +23,12 @@
 #include "core/error.hpp"
 #include "core/random.hpp"
 #include "core/step.hpp"
+#include "core/world_state.hpp"
 #include "integrate/critical_timestep.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
+#include "io/run_checkpoints.hpp"
 #include "lab/anchorage.hpp"
 #include "lab/soil_editing.hpp"
 #include "measure/measurements.hpp"
@@ -44,7 +46,63 @@ constexpr double kDensePorosity = 0.16, kLooseFill = 0.3;
 enum : std::uint16_t { kSoil = 0, kWalls = 1, kSheet = 2 };
 constexpr std::size_t kFrontWall = 1;  // index in World::walls (floor, front, back)
 
+void write_states(const std::string& path_grains, const std::string& path_sheet, const World<2>& w,
+                  const std::vector<int>& column_by_id) {
+  std::filesystem::create_directories(std::filesystem::path(path_grains).parent_path());
+  HistoryCsv g;
+  g.open(path_grains, {"id", "x", "y", "radius", "column"});
+  const auto& P = w.particles;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    g.row({static_cast<double>(P.id[i]), P.pos[i].x(), P.pos[i].y(), P.radius[i],
+           static_cast<double>(column_by_id[P.id[i]])});
+  HistoryCsv sh;
+  sh.open(path_sheet, {"node", "x", "y", "tension"});
+  const auto& S = w.spars;
+  for (std::size_t i = 0; i < S.nodes(); ++i)
+    sh.row({static_cast<double>(i), S.pos[i].x(), S.pos[i].y(),
+            i < S.elements() ? S.tension[i] : 0.0});
+}
+
+// The stages of the test, in order. A checkpoint records the stage and the loop
+// counters within it; the run goes on from there on resuming.
+enum class Phase : std::uint8_t {
+  kFoundation,     // deposition of the foundation in layers
+  kTrenchFill,     // the sheet laid, the foundation held: the trench filled
+  kCover,          // the cover deposited
+  kConsolidation,  // foundation released, surcharge placed: everything settles
+  kSpillSettle,    // grains spilled off a free face removed: settle again
+  kBonded,         // cohesive soils: settle with the bonds
+  kPull,           // the free end pulled at a constant rate
+  kDone
+};
+
+// The state of the pull, set up when the preparation ends.
+struct Pull {
+  // The anchoring soil: the fill above the run-out and in the trench, by grain id (ids
+  // of grains are their indices at the start of the pull: none is added or removed).
+  std::vector<char> zone;
+  std::vector<Vec> start;
+  std::vector<int> column;
+  std::uint64_t zone_count = 0;
+  double unit_weight = 0.0, sigma_q = 0.0, runout_load = 0.0;
+  SlipEstimate est;
+  std::vector<double> profile_at;  // displacements of the tension profiles to come
+  Vec clamp0 = Vec::Zero();
+  double next_record = 0.0, tension_sum = 0.0;
+  std::uint64_t tension_steps = 0;
+  double t_max = 0.0, d_at_max = 0.0, soil_at_max = 0.0, displacement = 0.0;
+  std::uint64_t pull_start = 0;
+
+  template <class Archive>
+  void visit(Archive& a) {
+    a(zone), a(start), a(column), a(zone_count), a(unit_weight), a(sigma_q), a(runout_load);
+    a(est), a(profile_at), a(clamp0), a(next_record), a(tension_sum), a(tension_steps);
+    a(t_max), a(d_at_max), a(soil_at_max), a(displacement), a(pull_start);
+  }
+};
+
 struct Pullout {
+  using Clock = std::chrono::steady_clock;
   const PulloutSettings& s;
   const RunOptions& opt;
   World<2> w;
@@ -54,12 +112,61 @@ struct Pullout {
   double mean_grain_area = 0.0;
   double bound_ratio = 1.0;  // area of the grains' bounding discs over their own area
   double y0 = 0.0;           // run-out level: top of the foundation
-  std::uint64_t total_steps = 0;
-  HistoryCsv prep_csv;
+  double top = 0.0;          // level of the cover's surface
+  HistoryCsv prep_csv, history, profiles;
+  VtkSeries<2> vtk;
+  RunCheckpoints checkpoints;
+  std::shared_ptr<SurfacePressure<2>> surcharge;
+  Clock::time_point t0 = Clock::now();
+  std::vector<double> moved;  // scratch of soil_displacement()
+
+  // The run's own state, saved in checkpoints (visit_state).
+  Phase phase = Phase::kFoundation;
+  std::uint64_t stage_step = 0;  // steps into the current settle()
+  std::uint64_t layer = 0;       // layers deposited in the current stage
+  std::uint8_t in_settle = 0;    // the current layer is settling
+  std::uint64_t foundation = 0;  // grains of the foundation (the lowest ids)
   double node_mass_factor = 1.0;
+  std::uint64_t total_steps = 0;
+  double wall_before = 0.0;  // wall time before the checkpoint resumed from
+  nlohmann::json prep = nlohmann::json::object();
+  Pull pull;
 
   Pullout(const PulloutSettings& settings, const RunOptions& options)
-      : s(settings), opt(options), progress(options.quiet), rng(settings.seed) {}
+      : s(settings),
+        opt(options),
+        progress(options.quiet),
+        rng(settings.seed),
+        vtk(options.out_dir),
+        checkpoints("pullout", 2, settings.resolved, options.out_dir, settings.checkpoint) {}
+
+  double elapsed() const {
+    return wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
+  }
+
+  template <class Archive>
+  void visit_state(Archive& a) {
+    a(phase), a(stage_step), a(layer), a(in_settle), a(foundation), a(node_mass_factor);
+    a(total_steps);
+    archive_json(a, prep);
+    std::string random = rng.state();
+    a(random);
+    if (Archive::kLoading && !rng.set_state(random))
+      throw CheckpointError("unreadable random state");
+    pull.visit(a);
+  }
+
+  // After a whole step: a checkpoint when due, and the stop on a signal.
+  void after_step() {
+    checkpoints.after_step(w.step, w.time, elapsed(), [&](StateWriter& runner, StateWriter& world) {
+      visit_state(runner);
+      runner(elapsed());
+      for (const HistoryCsv* f : {&prep_csv, &history, &profiles})
+        runner(static_cast<std::uint64_t>(f->rows()));
+      vtk.save(runner);
+      save_world_state(world, w);
+    });
+  }
 
   void build() {
     Material sheet = s.soil;
@@ -81,13 +188,7 @@ struct Pullout {
     plane("front", Vec(0.0, 0.0), Vec(1.0, 0.0), 0.0);
     plane("back", Vec(s.box_length, 0.0), Vec(-1.0, 0.0), 0.0);
     w.resolve_pair_laws();
-    // Soil against sheet: the interface friction alone (no rolling resistance, no bond).
-    for (auto* law : {&w.pair_laws[kSoil * 3 + kSheet], &w.pair_laws[kSheet * 3 + kSoil]}) {
-      law->mu = std::tan(s.interface_friction_deg * kDeg);
-      law->roll_mu = law->twist_mu = 0.0;
-      law->bond_tension = law->bond_shear = 0.0;
-    }
-    w.update_contact_extras();
+    set_interface_laws();
     if (s.deposit_friction_deg >= 0.0) set_soil_friction(std::tan(s.deposit_friction_deg * kDeg));
     w.gravity = Vec(0.0, -kGravity);
     w.auto_dt = true;
@@ -107,8 +208,63 @@ struct Pullout {
       bound_area += k.fraction / fsum * Dim<2>::volume(k.clump.bounding_radius) * scale2;
     }
     bound_ratio = bound_area / mean_grain_area;
-    prep_csv.open(opt.out_dir + "/preparation.csv",
-                  {"stage", "step", "time", "grains", "surface", "unbalanced", "kinetic_energy"});
+    y0 = s.foundation;
+    top = y0 + s.anchor.cover;
+  }
+
+  // Soil against sheet: the interface friction alone (no rolling resistance, no bond).
+  void set_interface_laws() {
+    for (auto* law : {&w.pair_laws[kSoil * 3 + kSheet], &w.pair_laws[kSheet * 3 + kSoil]}) {
+      law->mu = std::tan(s.interface_friction_deg * kDeg);
+      law->roll_mu = law->twist_mu = 0.0;
+      law->bond_tension = law->bond_shear = 0.0;
+    }
+    w.update_contact_extras();
+  }
+
+  static std::vector<std::string> prep_columns() {
+    return {"stage", "step", "time", "grains", "surface", "unbalanced", "kinetic_energy"};
+  }
+  static std::vector<std::string> history_columns() {
+    return {"step",
+            "time",
+            "displacement",
+            "tension",
+            "tension_step",
+            "soil_displacement",
+            "soil_displacement_median",
+            "kinetic_energy",
+            "unbalanced",
+            "sheet_contacts"};
+  }
+  static std::vector<std::string> profile_columns() { return {"displacement", "s", "tension"}; }
+
+  void start() {
+    prepare_output_dir(opt.out_dir);
+    prep_csv.open(opt.out_dir + "/preparation.csv", prep_columns());
+    phase = Phase::kFoundation;
+  }
+
+  // Rebuilt from the scenario (build()), then the newest valid checkpoint's state: the
+  // sheet and the surcharge plate are put back first when they were there.
+  void resume() {
+    const Checkpoint c = checkpoints.resume(s.file, {});
+    StateReader in(c.runner.data(), c.runner.size());
+    visit_state(in);
+    std::uint64_t rows[3] = {0, 0, 0};
+    in(wall_before), in(rows[0]), in(rows[1]), in(rows[2]);
+    vtk.restore(in);
+    if (phase > Phase::kFoundation) lay_sheet();
+    if (phase >= Phase::kConsolidation && s.surcharge > 0.0) add_surcharge_plate();
+    StateReader win(c.world.data(), c.world.size());
+    load_world_state(win, w);
+    prep_csv.resume_rows(opt.out_dir + "/preparation.csv", prep_columns(), rows[0]);
+    if (phase == Phase::kPull) {
+      history.resume_rows(opt.out_dir + "/history.csv", history_columns(), rows[1]);
+      profiles.resume_rows(opt.out_dir + "/tension_profiles.csv", profile_columns(), rows[2]);
+    }
+    checkpoints.set_wall_origin(wall_before);
+    t0 = Clock::now();
   }
 
   // Sets the soil's contact friction; its rolling friction follows in proportion (none
@@ -122,24 +278,24 @@ struct Pullout {
   }
 
   double top_of_grains() const {
-    double top = 0.0;
+    double t = 0.0;
     for (std::size_t i = 0; i < w.particles.size(); ++i)
-      top = std::max(top, w.particles.pos[i].y() + w.particles.radius[i]);
-    return top;
+      t = std::max(t, w.particles.pos[i].y() + w.particles.radius[i]);
+    return t;
   }
   // Median over columns of [x0, x1] of the highest grain top: the free surface's level.
   double surface(double x0, double x1) const {
     constexpr int kCols = 12;
-    std::vector<double> top(kCols, 0.0);
+    std::vector<double> col_top(kCols, 0.0);
     for (std::size_t i = 0; i < w.particles.size(); ++i) {
       const double x = w.particles.pos[i].x();
       if (x < x0 || x > x1) continue;
       const auto c = static_cast<std::size_t>(
           std::clamp(static_cast<int>((x - x0) / (x1 - x0) * kCols), 0, kCols - 1));
-      top[c] = std::max(top[c], w.particles.pos[i].y() + w.particles.radius[i]);
+      col_top[c] = std::max(col_top[c], w.particles.pos[i].y() + w.particles.radius[i]);
     }
-    std::nth_element(top.begin(), top.begin() + kCols / 2, top.end());
-    return top[kCols / 2];
+    std::nth_element(col_top.begin(), col_top.begin() + kCols / 2, col_top.end());
+    return col_top[kCols / 2];
   }
 
   void prep_row(double stage, double unb) {
@@ -148,49 +304,62 @@ struct Pullout {
                   kinetic_energy(w)});
   }
 
-  // Steps until the unbalanced force ratio falls below the settings' threshold.
+  // Steps until the unbalanced force ratio falls below the settings' threshold. Resumes
+  // where a checkpoint left it (stage_step).
   void settle(const std::string& stage, double stage_code) {
     const std::uint64_t every = 200;
-    for (std::uint64_t k = 1;; ++k) {
+    for (;;) {
+      const std::uint64_t k = ++stage_step;
       w.measure_this_step = k % every == 0;
       step(w);
-      stop_if_interrupted();
       ++total_steps;
-      if (!w.measure_this_step) continue;
-      const double unb = unbalanced_force_ratio(w);
-      progress.update(
-          stage, w.step, w.time, 0.0,
-          std::to_string(w.particles.size()) + " grains, unbalanced " + format_number(unb));
-      if (k % (5 * every) == 0) prep_row(stage_code, unb);
-      if (k >= 5 * every && unb < s.settle_unbalanced) return;
-      if (k >= s.max_settle_steps)
-        throw std::runtime_error(stage + ": the soil did not come to rest (unbalanced force " +
-                                 format_number(unb) + " after " + std::to_string(k) +
-                                 " steps); raise time.max_settle_steps or soil.settle_unbalanced");
+      if (w.measure_this_step) {
+        const double unb = unbalanced_force_ratio(w);
+        progress.update(
+            stage, w.step, w.time, 0.0,
+            std::to_string(w.particles.size()) + " grains, unbalanced " + format_number(unb));
+        if (k % (5 * every) == 0) prep_row(stage_code, unb);
+        if (k >= 5 * every && unb < s.settle_unbalanced) {
+          stage_step = 0;
+          return;
+        }
+        if (k >= s.max_settle_steps)
+          throw std::runtime_error(
+              stage + ": the soil did not come to rest (unbalanced force " + format_number(unb) +
+              " after " + std::to_string(k) +
+              " steps); raise time.max_settle_steps or soil.settle_unbalanced");
+      }
+      after_step();
     }
   }
 
   // Deposits layers over [x0, x1] until the surface there reaches `height`.
   void deposit_to(double height, double x0, double x1, const std::string& stage,
                   double stage_code) {
-    int layer = 0;
-    while (w.particles.size() == 0 || surface(x0, x1) < height) {
-      const double base = w.particles.size() == 0 ? 0.0 : top_of_grains();
-      const double from = w.particles.size() == 0 ? 0.0 : surface(x0, x1);
-      const double dense = std::min(s.layer_thickness, height - from + 2.0 * s.radius);
-      const auto count = static_cast<std::size_t>(
-          std::ceil((1.0 - kDensePorosity) * (x1 - x0) * dense / mean_grain_area));
-      const double loose = dense * (1.0 - kDensePorosity) * bound_ratio / kLooseFill;
-      try {
-        add_random_grains<2>(w, kinds, Vec(x0, base), Vec(x1, base + loose), count,
-                             1.0 - kLooseFill, s.radius_fuzz, s.soil.density, kSoil, rng,
-                             Vec::Zero(), s.radius);
-      } catch (const std::runtime_error& e) {
-        throw InputError(s.file, 0, "soil.layer_thickness", e.what());
+    for (;;) {
+      if (!in_settle) {
+        if (!(w.particles.size() == 0 || surface(x0, x1) < height)) break;
+        const double base = w.particles.size() == 0 ? 0.0 : top_of_grains();
+        const double from = w.particles.size() == 0 ? 0.0 : surface(x0, x1);
+        const double dense = std::min(s.layer_thickness, height - from + 2.0 * s.radius);
+        const auto count = static_cast<std::size_t>(
+            std::ceil((1.0 - kDensePorosity) * (x1 - x0) * dense / mean_grain_area));
+        const double loose = dense * (1.0 - kDensePorosity) * bound_ratio / kLooseFill;
+        try {
+          add_random_grains<2>(w, kinds, Vec(x0, base), Vec(x1, base + loose), count,
+                               1.0 - kLooseFill, s.radius_fuzz, s.soil.density, kSoil, rng,
+                               Vec::Zero(), s.radius);
+        } catch (const std::runtime_error& e) {
+          throw InputError(s.file, 0, "soil.layer_thickness", e.what());
+        }
+        w.rebuild_needed = true;
+        ++layer;
+        in_settle = 1;
       }
-      w.rebuild_needed = true;
-      settle(stage + " layer " + std::to_string(++layer), stage_code);
+      settle(stage + " layer " + std::to_string(layer), stage_code);
+      in_settle = 0;
     }
+    layer = 0;
   }
 
   std::vector<char> select(const std::function<bool(std::size_t)>& pred) const {
@@ -199,13 +368,21 @@ struct Pullout {
     return m;
   }
 
-  // Foundation, trench, sheet, fill, surcharge, bonds. Returns the preparation summary.
-  nlohmann::json prepare() {
-    nlohmann::json prep;
+  // The sheet, its axis half a thickness above the foundation's top.
+  void lay_sheet() {
+    const auto corners = sheet_corners(s.anchor, y0 + 0.5 * s.thickness);
+    const auto nodes = sheet_nodes(corners, s.element_length);
+    std::vector<Vec> pts(nodes.begin(), nodes.end());
+    w.spars.add_chain("sheet", pts, s.stiffness_J, s.mass_per_area, s.thickness, kSheet, s.bending);
+    w.spars.flags[0] = kNodeDriven;  // the clamp, still until the pull
+  }
+
+  // Foundation: deposited, trimmed flat at the run-out level, the trench excavated; then
+  // the sheet is laid and the foundation held (a face that stands while the trench is
+  // open).
+  void foundation_phase() {
     const auto& P = w.particles;
-    y0 = s.foundation;
     deposit_to(y0 + 2.0 * s.radius, 0.0, s.box_length, "foundation", 1);
-    // Flat top at the run-out level, and the trench.
     const double t = s.thickness;
     remove_grains(w, select([&](std::size_t i) {
                     return P.pos[i].y() + P.radius[i] > y0 ||
@@ -213,26 +390,17 @@ struct Pullout {
                   }));
     prep["foundation_grains"] = P.size();
     for (std::size_t i = 0; i < P.size(); ++i) w.particles.id[i] = static_cast<std::uint32_t>(i);
-
-    // The sheet, its axis half a thickness above the foundation's top.
-    const auto corners = sheet_corners(s.anchor, y0 + 0.5 * t);
-    const auto nodes = sheet_nodes(corners, s.element_length);
-    std::vector<Vec> pts(nodes.begin(), nodes.end());
-    w.spars.add_chain("sheet", pts, s.stiffness_J, s.mass_per_area, t, kSheet, s.bending);
-    w.spars.flags[0] = kNodeDriven;  // the clamp, still until the pull
+    lay_sheet();
     if (s.mass_scaling) scale_node_masses();
     w.rebuild_needed = true;
+    foundation = P.size();
+    hold_grains(w, std::vector<char>(foundation, 1), true);
+    phase = s.anchor.shape != "runout" ? Phase::kTrenchFill : Phase::kCover;
+  }
 
-    // Fill the trench and the cover with the foundation held (a face that stands while
-    // the trench is open), trim it flat, and release.
-    const std::size_t foundation = P.size();
-    const std::vector<char> found_mask(foundation, 1);
-    hold_grains(w, found_mask, true);
-    const double top = y0 + s.anchor.cover;
-    if (s.anchor.shape != "runout")  // the trench first, then the whole cover
-      deposit_to(y0, s.anchor.runout_length, s.anchor.runout_length + s.anchor.trench_width,
-                 "trench fill", 2);
-    deposit_to(top + 2.0 * s.radius, 0.0, s.box_length, "cover", 2);
+  // The cover trimmed flat; the foundation released; the free face; the surcharge.
+  void finish_fill() {
+    const auto& P = w.particles;
     // Renumbering moved the held grains: find them by id (new grains have larger ids).
     auto is_foundation = [&](std::size_t i) { return P.id[i] < foundation; };
     remove_grains(w, select([&](std::size_t i) {
@@ -248,25 +416,34 @@ struct Pullout {
       front.end = Vec(0.0, y0);
       w.rebuild_needed = true;
     }
-    if (s.surcharge > 0.0) add_surcharge_plate(top);
+    if (s.surcharge > 0.0) add_surcharge_plate();
     set_soil_friction(s.soil.friction);  // the soil's own friction from here on
+    phase = Phase::kConsolidation;
+  }
+
+  void consolidation_phase() {
     settle("consolidation", 3);
     if (s.anchor.front == "free") {
       // Grains that fell off the free face are no longer part of the anchorage.
+      const auto& P = w.particles;
       const std::size_t spilled =
           remove_grains(w, select([&](std::size_t i) { return P.pos[i].x() < 0.0; }));
       prep["spilled_grains"] = spilled;
-      if (spilled > 0) settle("consolidation", 3);
+      if (spilled > 0) {
+        phase = Phase::kSpillSettle;
+        return;
+      }
     }
+    after_consolidation();
+  }
+
+  void after_consolidation() {
     if (s.bonds) {
       prep["bonds"] = create_bonds(w, s.bond_gap_tolerance);
-      settle("bonded", 4);
+      phase = Phase::kBonded;
+      return;
     }
-    prep["grains"] = P.size();
-    prep["bodies"] = body_count(w);
-    prep["steps"] = w.step;
-    prep["time"] = w.time;
-    return prep;
+    begin_pull();
   }
 
   // Node masses raised so that the sheet's own critical step is no shorter than the
@@ -289,8 +466,8 @@ struct Pullout {
     node_mass_factor = factor;
   }
 
-  std::shared_ptr<SurfacePressure<2>> surcharge;
-  void add_surcharge_plate(double top) {
+  // The plate on the cover, held at the surcharge pressure.
+  void add_surcharge_plate() {
     Wall<2> plate;
     plate.name = "surcharge";
     plate.point = Vec(0.0, top + 0.5 * s.radius);
@@ -299,75 +476,19 @@ struct Pullout {
     plate.area = s.box_length;
     w.walls.push_back(plate);
     w.resolve_pair_laws();
-    for (auto* law : {&w.pair_laws[kSoil * 3 + kSheet], &w.pair_laws[kSheet * 3 + kSoil]}) {
-      law->mu = std::tan(s.interface_friction_deg * kDeg);
-      law->roll_mu = law->twist_mu = 0.0;
-      law->bond_tension = law->bond_shear = 0.0;
-    }
-    w.update_contact_extras();
+    set_interface_laws();
     surcharge = std::make_shared<SurfacePressure<2>>(w.walls.size() - 1, s.surcharge,
                                                      0.05 * s.radius / w.dt);
     w.controllers = {surcharge};
   }
-};
 
-void write_states(const std::string& path_grains, const std::string& path_sheet, const World<2>& w,
-                  const std::vector<int>& column_by_id) {
-  std::filesystem::create_directories(std::filesystem::path(path_grains).parent_path());
-  HistoryCsv g;
-  g.open(path_grains, {"id", "x", "y", "radius", "column"});
-  const auto& P = w.particles;
-  for (std::size_t i = 0; i < P.size(); ++i)
-    g.row({static_cast<double>(P.id[i]), P.pos[i].x(), P.pos[i].y(), P.radius[i],
-           static_cast<double>(column_by_id[P.id[i]])});
-  HistoryCsv sh;
-  sh.open(path_sheet, {"node", "x", "y", "tension"});
-  const auto& S = w.spars;
-  for (std::size_t i = 0; i < S.nodes(); ++i)
-    sh.row({static_cast<double>(i), S.pos[i].x(), S.pos[i].y(),
-            i < S.elements() ? S.tension[i] : 0.0});
-}
-
-}  // namespace
-
-namespace {
-nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt) {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  prepare_output_dir(opt.out_dir);
-  Pullout run(s, opt);
-  run.build();
-  nlohmann::json results;
-  results["preparation"] = run.prepare();
-  World<2>& w = run.w;
-  auto& P = w.particles;
-  auto& S = w.spars;
-
-  // The anchoring soil: the fill above the run-out and in the trench (ids of grains are
-  // their indices after the preparation: no grain is added or removed from here on).
-  const std::size_t n = P.size();
-  for (std::size_t i = 0; i < n; ++i) P.id[i] = static_cast<std::uint32_t>(i);
-  const double x_end = s.anchor.runout_length + s.anchor.trench_width;
-  std::vector<char> zone(n, 0);
-  std::vector<Vec> start(n);
-  std::vector<int> column(n, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec x = P.pos[i];
-    start[i] = x;
-    column[i] = std::clamp(static_cast<int>(x.x() / s.box_length * s.columns), 0, s.columns - 1);
-    const bool above = x.y() > run.y0;
-    const bool in_trench = overlaps_trench(s.anchor, run.y0, x, 0.0);
-    zone[i] = x.x() > 0.0 && x.x() < x_end && (above || in_trench) ? 1 : 0;
-  }
-  std::size_t zone_count = 0;
-  for (char z : zone) zone_count += z;
   // Displacement of the anchoring soil towards the pull: the mean, and the median (which
   // grains that roll off a free face far from the anchor do not pull up).
-  std::vector<double> moved;
-  auto soil_displacement = [&](bool median = false) {
+  double soil_displacement(bool median = false) {
+    const auto& P = w.particles;
     moved.clear();
-    for (std::size_t i = 0; i < n; ++i)
-      if (zone[P.id[i]]) moved.push_back(start[P.id[i]].x() - P.pos[i].x());
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (pull.zone[P.id[i]]) moved.push_back(pull.start[P.id[i]].x() - P.pos[i].x());
     if (moved.empty()) return 0.0;
     if (median) {
       std::nth_element(moved.begin(), moved.begin() + moved.size() / 2, moved.end());
@@ -376,116 +497,198 @@ nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt)
     double sum = 0.0;
     for (double d : moved) sum += d;
     return sum / static_cast<double>(moved.size());
-  };
+  }
 
-  // Unit weight of the cover where it is whole (next to the end of the run-out): solid
-  // area in the box x density x g over the box's area; and the load on the run-out: the
-  // weight of the soil above it plus the surcharge, for the analytic estimate.
-  const double L = s.anchor.runout_length;
-  Box<2> cover{Vec(std::max(0.0, L - 2.0 * s.anchor.cover), run.y0 + s.thickness),
-               Vec(L, run.y0 + s.anchor.cover)};
-  const double unit_weight =
-      solid_volume_in_box(w, cover) / cover.volume() * s.soil.density * kGravity;
-  const double sigma_q = run.surcharge ? run.surcharge->pressure(w) : 0.0;
-  double runout_load = sigma_q * L;
-  for (std::size_t i = 0; i < n; ++i)
-    if (P.pos[i].y() > run.y0 && P.pos[i].x() > 0.0 && P.pos[i].x() < L)
-      runout_load += Dim<2>::volume(P.radius[i]) * s.soil.density * kGravity;
-  const double K = s.earth_pressure_coefficient >= 0.0 ? s.earth_pressure_coefficient
-                                                       : 1.0 - std::sin(s.soil_friction_deg * kDeg);
-  const SlipEstimate est = slip_estimate(s.anchor, unit_weight, sigma_q,
-                                         std::tan(s.interface_friction_deg * kDeg), K, runout_load);
-
-  write_states(opt.out_dir + "/states/grains_initial.csv",
-               opt.out_dir + "/states/sheet_initial.csv", w, column);
-  VtkSeries<2> vtk(opt.out_dir);
-  if (s.vtk) vtk.write(w);
-
-  // The pull.
-  HistoryCsv history;
-  history.open(opt.out_dir + "/history.csv",
-               {"step", "time", "displacement", "tension", "tension_step", "soil_displacement",
-                "soil_displacement_median", "kinetic_energy", "unbalanced", "sheet_contacts"});
-  HistoryCsv profiles;
-  profiles.open(opt.out_dir + "/tension_profiles.csv", {"displacement", "s", "tension"});
-  std::vector<double> profile_at = s.profiles_at;
-  std::sort(profile_at.begin(), profile_at.end(), std::greater<>());
-  w.local_damping = s.pull_damping;
-  const Vec clamp0 = S.pos[0];
-  S.vel[0] = Vec(-s.rate, 0.0);
-  const double d_record = s.max_displacement / s.history_points;
-  double next_record = d_record, tension_sum = 0.0;
-  std::uint64_t tension_steps = 0;
-  double t_max = 0.0, d_at_max = 0.0, soil_at_max = 0.0;
-  double displacement = 0.0;
-  const std::uint64_t pull_start = w.step;
-  while (displacement < s.max_displacement) {
-    const double next_d = clamp0.x() - (S.pos[0].x() - s.rate * w.dt);
-    w.measure_this_step = next_d >= next_record || next_d >= s.max_displacement;
-    step(w);
-    stop_if_interrupted();
-    ++run.total_steps;
-    displacement = clamp0.x() - S.pos[0].x();
-    tension_sum += S.tension[0];
-    ++tension_steps;
-    // The last row is always written, even when a change of dt made the prediction miss it.
-    if (w.measure_this_step || displacement >= s.max_displacement) {
-      // The tension of a row is its mean over the steps since the previous row: the
-      // per-step value carries the sheet's own vibrations.
-      const double T = tension_sum / static_cast<double>(tension_steps);
-      const double soil = soil_displacement();
-      history.row({static_cast<double>(w.step), w.time, displacement, T, S.tension[0], soil,
-                   soil_displacement(true), kinetic_energy(w), unbalanced_force_ratio(w),
-                   static_cast<double>(w.stats.spar_contacts)});
-      if (T > t_max) t_max = T, d_at_max = displacement, soil_at_max = soil;
-      tension_sum = 0.0;
-      tension_steps = 0;
-      while (next_record <= displacement) next_record += d_record;
-      run.progress.update("pull", w.step, w.time, displacement / s.max_displacement,
-                          "T " + format_number(T) + " N/m");
+  // End of the preparation: the anchoring zone, the analytic estimate, the initial
+  // states, the output files of the pull; the clamp starts moving.
+  void begin_pull() {
+    auto& P = w.particles;
+    auto& S = w.spars;
+    prep["grains"] = P.size();
+    prep["bodies"] = body_count(w);
+    prep["steps"] = w.step;
+    prep["time"] = w.time;
+    Pull& u = pull;
+    const std::size_t n = P.size();
+    for (std::size_t i = 0; i < n; ++i) P.id[i] = static_cast<std::uint32_t>(i);
+    const double x_end = s.anchor.runout_length + s.anchor.trench_width;
+    u.zone.assign(n, 0);
+    u.start.resize(n);
+    u.column.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec x = P.pos[i];
+      u.start[i] = x;
+      u.column[i] =
+          std::clamp(static_cast<int>(x.x() / s.box_length * s.columns), 0, s.columns - 1);
+      const bool above = x.y() > y0;
+      const bool in_trench = overlaps_trench(s.anchor, y0, x, 0.0);
+      u.zone[i] = x.x() > 0.0 && x.x() < x_end && (above || in_trench) ? 1 : 0;
     }
-    while (!profile_at.empty() && displacement >= profile_at.back() - 1e-12) {
-      double arc = 0.0;
-      for (std::size_t e = 0; e < S.elements(); ++e) {
-        const double len = S.length(e);
-        profiles.row({profile_at.back(), arc + 0.5 * len, S.tension[e]});
-        arc += len;
+    u.zone_count = 0;
+    for (char z : u.zone) u.zone_count += static_cast<std::uint64_t>(z);
+
+    // Unit weight of the cover where it is whole (next to the end of the run-out): solid
+    // area in the box x density x g over the box's area; and the load on the run-out: the
+    // weight of the soil above it plus the surcharge, for the analytic estimate.
+    const double L = s.anchor.runout_length;
+    Box<2> cover{Vec(std::max(0.0, L - 2.0 * s.anchor.cover), y0 + s.thickness),
+                 Vec(L, y0 + s.anchor.cover)};
+    u.unit_weight = solid_volume_in_box(w, cover) / cover.volume() * s.soil.density * kGravity;
+    u.sigma_q = surcharge ? surcharge->pressure(w) : 0.0;
+    u.runout_load = u.sigma_q * L;
+    for (std::size_t i = 0; i < n; ++i)
+      if (P.pos[i].y() > y0 && P.pos[i].x() > 0.0 && P.pos[i].x() < L)
+        u.runout_load += Dim<2>::volume(P.radius[i]) * s.soil.density * kGravity;
+    const double K = s.earth_pressure_coefficient >= 0.0
+                         ? s.earth_pressure_coefficient
+                         : 1.0 - std::sin(s.soil_friction_deg * kDeg);
+    u.est = slip_estimate(s.anchor, u.unit_weight, u.sigma_q,
+                          std::tan(s.interface_friction_deg * kDeg), K, u.runout_load);
+
+    write_states(opt.out_dir + "/states/grains_initial.csv",
+                 opt.out_dir + "/states/sheet_initial.csv", w, u.column);
+    if (s.vtk) vtk.write(w);
+    history.open(opt.out_dir + "/history.csv", history_columns());
+    profiles.open(opt.out_dir + "/tension_profiles.csv", profile_columns());
+    u.profile_at = s.profiles_at;
+    std::sort(u.profile_at.begin(), u.profile_at.end(), std::greater<>());
+    w.local_damping = s.pull_damping;
+    u.clamp0 = S.pos[0];
+    S.vel[0] = Vec(-s.rate, 0.0);
+    u.next_record = s.max_displacement / s.history_points;
+    u.tension_sum = 0.0;
+    u.tension_steps = 0;
+    u.t_max = u.d_at_max = u.soil_at_max = u.displacement = 0.0;
+    u.pull_start = w.step;
+    phase = Phase::kPull;
+  }
+
+  // The free end pulled horizontally at a constant rate.
+  void pull_phase() {
+    auto& S = w.spars;
+    Pull& u = pull;
+    const double d_record = s.max_displacement / s.history_points;
+    while (u.displacement < s.max_displacement) {
+      const double next_d = u.clamp0.x() - (S.pos[0].x() - s.rate * w.dt);
+      w.measure_this_step = next_d >= u.next_record || next_d >= s.max_displacement;
+      step(w);
+      ++total_steps;
+      u.displacement = u.clamp0.x() - S.pos[0].x();
+      u.tension_sum += S.tension[0];
+      ++u.tension_steps;
+      // The last row is always written, even when a change of dt made the prediction miss it.
+      if (w.measure_this_step || u.displacement >= s.max_displacement) {
+        // The tension of a row is its mean over the steps since the previous row: the
+        // per-step value carries the sheet's own vibrations.
+        const double T = u.tension_sum / static_cast<double>(u.tension_steps);
+        const double soil = soil_displacement();
+        history.row({static_cast<double>(w.step), w.time, u.displacement, T, S.tension[0], soil,
+                     soil_displacement(true), kinetic_energy(w), unbalanced_force_ratio(w),
+                     static_cast<double>(w.stats.spar_contacts)});
+        if (T > u.t_max) u.t_max = T, u.d_at_max = u.displacement, u.soil_at_max = soil;
+        u.tension_sum = 0.0;
+        u.tension_steps = 0;
+        while (u.next_record <= u.displacement) u.next_record += d_record;
+        progress.update("pull", w.step, w.time, u.displacement / s.max_displacement,
+                        "T " + format_number(T) + " N/m");
       }
-      if (s.vtk) vtk.write(w);
-      profile_at.pop_back();
+      while (!u.profile_at.empty() && u.displacement >= u.profile_at.back() - 1e-12) {
+        double arc = 0.0;
+        for (std::size_t e = 0; e < S.elements(); ++e) {
+          const double len = S.length(e);
+          profiles.row({u.profile_at.back(), arc + 0.5 * len, S.tension[e]});
+          arc += len;
+        }
+        if (s.vtk) vtk.write(w);
+        u.profile_at.pop_back();
+      }
+      after_step();
+    }
+    phase = Phase::kDone;
+  }
+
+  void run_phases() {
+    for (;;) {
+      switch (phase) {
+        case Phase::kFoundation:
+          foundation_phase();
+          break;
+        case Phase::kTrenchFill:
+          deposit_to(y0, s.anchor.runout_length, s.anchor.runout_length + s.anchor.trench_width,
+                     "trench fill", 2);
+          phase = Phase::kCover;
+          break;
+        case Phase::kCover:
+          deposit_to(top + 2.0 * s.radius, 0.0, s.box_length, "cover", 2);
+          finish_fill();
+          break;
+        case Phase::kConsolidation:
+          consolidation_phase();
+          break;
+        case Phase::kSpillSettle:
+          settle("consolidation", 3);
+          after_consolidation();
+          break;
+        case Phase::kBonded:
+          settle("bonded", 4);
+          begin_pull();
+          break;
+        case Phase::kPull:
+          pull_phase();
+          break;
+        case Phase::kDone:
+          return;
+      }
     }
   }
-  run.progress.finish();
-  write_states(opt.out_dir + "/states/grains_final.csv", opt.out_dir + "/states/sheet_final.csv", w,
-               column);
-  if (s.vtk) vtk.write(w);
+};
 
-  results["T_max"] = t_max;
-  results["displacement_at_T_max"] = d_at_max;
-  results["T_analytic_slip"] = est.tension;
-  results["T_max_over_analytic"] = est.tension > 0.0 ? t_max / est.tension : 0.0;
-  results["soil_displacement_mean"] = soil_displacement();
-  results["soil_displacement_median"] = soil_displacement(true);
-  results["soil_displacement_at_T_max"] = soil_at_max;
-  results["soil_displacement_ratio"] = soil_displacement() / s.max_displacement;
-  results["anchoring_zone_grains"] = zone_count;
-  results["analytic"] = {{"unit_weight", unit_weight},
-                         {"sigma_v0", est.sigma_v0},
-                         {"surcharge_measured", sigma_q},
-                         {"runout_load", runout_load},
-                         {"K", est.K},
-                         {"runout_friction", est.runout},
-                         {"trench_friction", est.trench},
-                         {"capstan_factor", est.capstan}};
+}  // namespace
+
+namespace {
+nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt) {
+  Pullout run(s, opt);
+  run.build();
+  if (opt.resume)
+    run.resume();
+  else
+    run.start();
+  run.run_phases();
+  run.progress.finish();
+  const World<2>& w = run.w;
+  const Pull& u = run.pull;
+  write_states(opt.out_dir + "/states/grains_final.csv", opt.out_dir + "/states/sheet_final.csv", w,
+               u.column);
+  if (s.vtk) run.vtk.write(w);
+
+  nlohmann::json results;
+  results["preparation"] = run.prep;
+  results["T_max"] = u.t_max;
+  results["displacement_at_T_max"] = u.d_at_max;
+  results["T_analytic_slip"] = u.est.tension;
+  results["T_max_over_analytic"] = u.est.tension > 0.0 ? u.t_max / u.est.tension : 0.0;
+  const double soil_mean = run.soil_displacement();
+  results["soil_displacement_mean"] = soil_mean;
+  results["soil_displacement_median"] = run.soil_displacement(true);
+  results["soil_displacement_at_T_max"] = u.soil_at_max;
+  results["soil_displacement_ratio"] = soil_mean / s.max_displacement;
+  results["anchoring_zone_grains"] = u.zone_count;
+  results["analytic"] = {{"unit_weight", u.unit_weight},
+                         {"sigma_v0", u.est.sigma_v0},
+                         {"surcharge_measured", u.sigma_q},
+                         {"runout_load", u.runout_load},
+                         {"K", u.est.K},
+                         {"runout_friction", u.est.runout},
+                         {"trench_friction", u.est.trench},
+                         {"capstan_factor", u.est.capstan}};
+  const auto& S = w.spars;
   results["sheet"] = {
       {"nodes", S.nodes()}, {"elements", S.elements()}, {"node_mass_factor", run.node_mass_factor}};
-  results["pull_steps"] = w.step - pull_start;
+  results["pull_steps"] = w.step - u.pull_start;
   results["dt"] = w.dt;
-  results["grains"] = P.size();
-
-  const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  results["grains"] = w.particles.size();
   return write_run_summary(opt.out_dir, "pullout", "completed", s.resolved, results,
-                           timing_json(w, wall_s, run.total_steps, opt.threads));
+                           timing_json(w, run.elapsed(), run.total_steps, opt.threads));
 }
 }  // namespace
 
@@ -493,7 +696,8 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
   try {
     return run_pullout_test(s, opt);
   } catch (const Interrupted& i) {
-    write_interrupted_summary(opt.out_dir, "pullout", s.resolved, i.signal, opt.threads);
+    write_interrupted_summary(opt.out_dir, "pullout", s.resolved, i.signal, opt.threads,
+                              i.checkpoint);
     throw;
   }
 }

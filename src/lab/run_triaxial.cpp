@@ -16,9 +16,11 @@
 #include "core/random.hpp"
 #include "core/step.hpp"
 #include "core/text.hpp"
+#include "core/world_state.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
+#include "io/run_checkpoints.hpp"
 #include "lab/lab_box.hpp"
 #include "lab/soil_parameters.hpp"
 #include "measure/measurements.hpp"
@@ -36,21 +38,76 @@ double equivalent_diameter(double v) {
   return D == 2 ? 2.0 * std::sqrt(v / std::numbers::pi) : std::cbrt(6.0 * v / std::numbers::pi);
 }
 
+// The stages of the test, in order. A checkpoint records the stage and the loop
+// counters within it; the run goes on from there on resuming.
+enum class Phase : std::uint8_t {
+  kCompaction,         // radius growth to the isotropic stress
+  kFrictionReduction,  // friction lowered by steps to the target porosity
+  kStabilisation,      // test friction back, stress held
+  kConsolidation,      // this test's confining stress (first attempt)
+  kConsolidationMore,  // stresses off target: up to compaction.max_steps more
+  kCompression,        // strain-controlled axial loading
+  kDone
+};
+
+// The state of one compression test from its consolidation on.
+template <int D>
+struct Shear {
+  typename Dim<D>::Vec ref = Dim<D>::Vec::Zero();  // box size at the start of loading
+  std::string warning;
+  std::uint64_t bonds_made = 0, broken0 = 0;
+  double porosity0 = 0.0, height0 = 0.0, d0 = 0.0;
+  double eps = 0.0, next_record = 0.0;
+  std::vector<double> vtk_left;  // strains of the VTK frames to come, largest first
+  CompressionCurve curve;
+
+  template <class Archive>
+  void visit(Archive& a) {
+    a(ref), a(warning), a(bonds_made), a(broken0), a(porosity0), a(height0), a(d0), a(eps);
+    a(next_record), a(vtk_left), a(curve.dimension), a(curve.axial_strain);
+    a(curve.volumetric_strain), a(curve.sigma1), a(curve.sigma3);
+  }
+};
+
 template <int D>
 struct Lab {
   using Vec = typename Dim<D>::Vec;
+  using Clock = std::chrono::steady_clock;
+  static constexpr int kAxial = D - 1;
   const TriaxialSettings& s;
   const RunOptions& opt;
   World<D> w;
+  World<D> prepared;  // the sample every test starts from
   LabBox<D> box;
   Progress progress;
-  HistoryCsv prep_csv;
+  HistoryCsv prep_csv, history;
+  VtkSeries<D> vtk;
+  RunCheckpoints checkpoints;
+  std::vector<std::shared_ptr<StressServo<D>>> servos;
+  Clock::time_point t0 = Clock::now();
+
+  // The run's own state, saved in checkpoints (visit_state).
+  Phase phase = Phase::kCompaction;
+  std::uint64_t stage_step = 0;    // steps into the current run_until
+  double phi = 0.0;                // grain friction of the friction reduction (deg)
+  std::uint8_t interval_open = 0;  // a friction-reduction interval is under way
   std::uint64_t total_steps = 0;
-  double wall_s = 0.0;
+  double wall_before = 0.0;  // wall time before the checkpoint resumed from
+  nlohmann::json prep = nlohmann::json::object(), tests = nlohmann::json::array();
+  std::vector<double> s1_peaks, s3_peaks;
+  std::uint64_t test = 0;  // index of the confining stress under test
+  Shear<D> shear;
 
   Lab(const TriaxialSettings& settings, const RunOptions& options)
-      : s(settings), opt(options), progress(options.quiet) {}
+      : s(settings),
+        opt(options),
+        progress(options.quiet),
+        vtk(options.out_dir),
+        checkpoints("triaxial", D, settings.resolved, options.out_dir, settings.checkpoint) {}
 
+  double elapsed() const {
+    return wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
+  }
   double porosity() const { return 1.0 - solid_volume(w) / box.volume(w); }
   double grain_friction_deg() const { return std::atan(w.pair_law(0, 0).mu) / kDeg; }
   // Sets the grain-grain friction (entry (0, 0) of the pair table). Rolling and twisting
@@ -63,34 +120,82 @@ struct Lab {
     law.roll_mu = s.grain.rolling_friction * ratio;
     law.twist_mu = s.grain.twisting_friction * ratio;
   }
+  double sigma3() const { return s.confining_stresses[test]; }
+
+  template <class Archive>
+  void visit_state(Archive& a) {
+    a(phase), a(stage_step), a(phi), a(interval_open), a(total_steps), a(test);
+    archive_json(a, prep), archive_json(a, tests);
+    a(s1_peaks), a(s3_peaks);
+    shear.visit(a);
+  }
+
+  // After a whole step: a checkpoint when due, and the stop on a signal.
+  void after_step() {
+    checkpoints.after_step(w.step, w.time, elapsed(), [&](StateWriter& runner, StateWriter& world) {
+      visit_state(runner);
+      runner(elapsed());
+      runner(static_cast<std::uint64_t>(prep_csv.rows()));
+      runner(static_cast<std::uint64_t>(history.rows()));
+      vtk.save(runner);
+      const bool tests_begun = phase >= Phase::kConsolidation;
+      runner(static_cast<std::uint8_t>(tests_begun));
+      if (tests_begun) {
+        StateWriter sample;
+        save_world_state(sample, prepared);
+        runner(sample.bytes());
+      }
+      save_world_state(world, w);
+    });
+  }
 
   // Steps with measurement every `every` steps; stops when `done()` holds on a
-  // measured step or after max_steps. Returns false on reaching max_steps.
+  // measured step or after max_steps. Returns false on reaching max_steps. Resumes
+  // where a checkpoint left it (stage_step).
   template <typename Done>
   bool run_until(const std::string& stage, std::uint64_t max_steps, std::uint64_t every,
-                 Done&& done, double fraction_base = 0.0) {
-    for (std::uint64_t k = 1; k <= max_steps; ++k) {
+                 Done&& done) {
+    while (stage_step < max_steps) {
+      const std::uint64_t k = ++stage_step;
       w.measure_this_step = k % every == 0;
       step(w);
-      stop_if_interrupted();
       ++total_steps;
       if (w.measure_this_step) {
         const double unb = unbalanced_force_ratio(w);
-        progress.update(stage, w.step, w.time, fraction_base,
+        progress.update(stage, w.step, w.time, 0.0,
                         "mean stress " + format_number(box.mean_stress(w)) + " Pa, porosity " +
                             format_number(porosity()) + ", unbalanced " + format_number(unb));
-        if (done(unb)) return true;
+        if (done(unb)) {
+          stage_step = 0;
+          return true;
+        }
       }
+      after_step();
     }
+    stage_step = 0;
     return false;
   }
 
   // One row of preparation.csv; phase 1 compaction, 2 friction reduction, 3 stabilisation.
-  void prep_row(double phase) {
-    prep_csv.row({phase, static_cast<double>(w.step), w.time, box.mean_stress(w), porosity(),
+  void prep_row(double code) {
+    prep_csv.row({code, static_cast<double>(w.step), w.time, box.mean_stress(w), porosity(),
                   grain_friction_deg(), unbalanced_force_ratio(w), coordination_number(w),
                   w.particles.radius.empty() ? 0.0 : w.particles.radius[0]});
   }
+  static std::vector<std::string> prep_columns() {
+    return {"phase",        "step",       "time",         "mean_stress", "porosity",
+            "friction_deg", "unbalanced", "coordination", "radius_0"};
+  }
+  static std::vector<std::string> history_columns(bool bonds) {
+    std::vector<std::string> cols = {"test",  "step", "time", "axial_strain", "volumetric_strain",
+                                     "sigma1"};
+    if (D == 3) cols.push_back("sigma2");
+    for (const char* c : {"sigma3", "p", "q", "porosity", "coordination", "unbalanced"})
+      cols.push_back(c);
+    if (bonds) cols.insert(cols.end(), {"bonds", "broken_bonds"});
+    return cols;
+  }
+  bool bonds() const { return s.bonds_create != "none"; }
 
   void build() {
     w.materials = {s.grain, s.wall};
@@ -120,191 +225,257 @@ struct Lab {
     w.threads = opt.threads;
   }
 
-  // Radius growth to the isotropic stress; then friction reduction to the target porosity.
-  nlohmann::json prepare() {
-    prep_csv.open(opt.out_dir + "/preparation.csv",
-                  {"phase", "step", "time", "mean_stress", "porosity", "friction_deg", "unbalanced",
-                   "coordination", "radius_0"});
+  // The controllers of a phase. The servos of a test are made at its consolidation and
+  // kept through its compression (their integral terms carry over).
+  void install_controllers(bool new_servos) {
+    w.controllers.clear();
+    if (phase <= Phase::kStabilisation) {
+      w.controllers.push_back(std::make_shared<RadiusGrowth<D>>(
+          box, s.compaction_stress, s.max_multiplier, s.final_max_multiplier));
+      return;
+    }
+    if (phase == Phase::kDone) return;
+    if (new_servos) {
+      servos.clear();
+      for (int k = 0; k < D; ++k)
+        servos.push_back(std::make_shared<StressServo<D>>(box, k, sigma3(), s.servo_gain));
+    }
+    if (phase == Phase::kCompression) {
+      // Axial wall strain-controlled, lateral walls servo-controlled.
+      for (int k = 0; k < D - 1; ++k) w.controllers.push_back(servos[static_cast<std::size_t>(k)]);
+      w.controllers.push_back(std::make_shared<AxialStrainRate<D>>(box, kAxial, s.strain_rate));
+    } else {
+      w.controllers.assign(servos.begin(), servos.end());
+    }
+  }
+
+  void start() {
+    prepare_output_dir(opt.out_dir);
+    prep_csv.open(opt.out_dir + "/preparation.csv", prep_columns());
     w.local_damping = s.compaction_damping;
-    auto growth = std::make_shared<RadiusGrowth<D>>(box, s.compaction_stress, s.max_multiplier,
-                                                    s.final_max_multiplier);
-    w.controllers = {growth};
+    phase = Phase::kCompaction;
+    install_controllers(false);
+  }
+
+  // Rebuilt from the scenario (build()), then the newest valid checkpoint's state.
+  void resume() {
+    const Checkpoint c = checkpoints.resume(s.file, {});
+    StateReader in(c.runner.data(), c.runner.size());
+    visit_state(in);
+    std::uint64_t prep_rows = 0, history_rows = 0;
+    std::uint8_t tests_begun = 0;
+    in(wall_before), in(prep_rows), in(history_rows);
+    vtk.restore(in);
+    in(tests_begun);
+    if (tests_begun) {
+      std::string sample;
+      in(sample);
+      prepared = w;  // the scenario's walls and materials, no controllers
+      StateReader sin(sample.data(), sample.size());
+      load_world_state(sin, prepared);
+    }
+    install_controllers(true);
+    StateReader win(c.world.data(), c.world.size());
+    load_world_state(win, w);
+    prep_csv.resume_rows(opt.out_dir + "/preparation.csv", prep_columns(), prep_rows);
+    if (tests_begun)
+      history.resume_rows(opt.out_dir + "/history.csv", history_columns(bonds()), history_rows);
+    checkpoints.set_wall_origin(wall_before);
+    t0 = Clock::now();
+  }
+
+  // Holds at the compaction stress with a small unbalanced force (rows of `code`).
+  bool stable_at_stress(double unb, double code) {
+    prep_row(code);
     const double target = s.compaction_stress;
-    auto stable = [&](double unb) {
-      prep_row(1);
-      return std::abs(box.mean_stress(w) - target) < s.stress_tolerance * target &&
-             unb < s.unbalanced_tolerance;
-    };
-    if (!run_until("compaction", s.max_compaction_steps, 200, stable, 0.0))
+    return std::abs(box.mean_stress(w) - target) < s.stress_tolerance * target &&
+           unb < s.unbalanced_tolerance;
+  }
+
+  // Radius growth to the isotropic stress.
+  void compaction() {
+    if (!run_until("compaction", s.max_compaction_steps, 200,
+                   [&](double unb) { return stable_at_stress(unb, 1); }))
       throw std::runtime_error(
           "compaction did not reach the isotropic stress with unbalanced force < " +
           format_number(s.unbalanced_tolerance) + " in " + std::to_string(s.max_compaction_steps) +
           " steps; raise compaction.max_steps");
-    nlohmann::json prep;
     prep["porosity_after_compaction"] = porosity();
     prep["compaction_steps"] = w.step;
-    double phi = grain_friction_deg();
-    if (s.target_porosity > 0.0) {
-      // Lower the friction by steps, holding the stress by radius growth, until the
-      // porosity reaches the target (checked every 50 steps so as not to overshoot).
-      bool reached = porosity() <= s.target_porosity;
-      while (!reached) {
+    phi = grain_friction_deg();
+    if (s.target_porosity > 0.0 && porosity() > s.target_porosity)
+      phase = Phase::kFrictionReduction;
+    else
+      begin_stabilisation();
+  }
+
+  // Lower the friction by steps, holding the stress by radius growth, until the
+  // porosity reaches the target (checked every 50 steps so as not to overshoot).
+  void friction_reduction() {
+    for (;;) {
+      if (!interval_open) {
         if (phi < 1e-3) {
           prep["warning"] = "target porosity not reached with zero friction";
           break;
         }
         phi *= s.friction_factor;
         set_grain_friction_deg(phi);
-        reached = run_until("friction reduction", static_cast<std::uint64_t>(s.friction_interval),
-                            50, [&](double) { return porosity() <= s.target_porosity; });
-        prep_row(2);
+        interval_open = 1;
       }
+      const bool reached =
+          run_until("friction reduction", static_cast<std::uint64_t>(s.friction_interval), 50,
+                    [&](double) { return porosity() <= s.target_porosity; });
+      prep_row(2);
+      interval_open = 0;
+      if (reached) break;
     }
+    begin_stabilisation();
+  }
+
+  // Back to the test friction, then settle with the stress held.
+  void begin_stabilisation() {
     prep["compaction_friction_deg"] = phi;
-    // Back to the test friction, then settle with the stress held.
     set_grain_friction_deg(std::atan(s.grain.friction) / kDeg);
-    if (!run_until("stabilisation", s.max_compaction_steps, 200, [&](double unb) {
-          prep_row(3);
-          return std::abs(box.mean_stress(w) - target) < s.stress_tolerance * target &&
-                 unb < s.unbalanced_tolerance;
-        }))
+    phase = Phase::kStabilisation;
+  }
+
+  void stabilisation() {
+    if (!run_until("stabilisation", s.max_compaction_steps, 200,
+                   [&](double unb) { return stable_at_stress(unb, 3); }))
       throw std::runtime_error("the sample did not stabilise after the friction reduction");
     if (s.bonds_create == "after_compaction") prep["bonds"] = create_bonds(w, s.bond_gap_tolerance);
     prep["porosity"] = porosity();
     prep["mean_stress"] = box.mean_stress(w);
     prep["steps"] = w.step;
     w.controllers.clear();
-    return prep;
+    prepared = w;
+    history.open(opt.out_dir + "/history.csv", history_columns(bonds()));
+    if (s.vtk) vtk.write(prepared);
+    test = 0;
+    begin_test();
   }
-};
 
-template <int D>
-nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
-  using Vec = typename Dim<D>::Vec;
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  prepare_output_dir(opt.out_dir);
-  Lab<D> lab(s, opt);
-  lab.build();
-  nlohmann::json results;
-  results["preparation"] = lab.prepare();
-  const World<D> prepared = lab.w;
-  const int axial = D - 1;
-  const bool several = s.confining_stresses.size() > 1;
-
-  std::vector<std::string> cols = {"test",  "step", "time", "axial_strain", "volumetric_strain",
-                                   "sigma1"};
-  if (D == 3) cols.push_back("sigma2");
-  for (const char* c : {"sigma3", "p", "q", "porosity", "coordination", "unbalanced"})
-    cols.push_back(c);
-  const bool bonds = s.bonds_create != "none";
-  if (bonds) cols.insert(cols.end(), {"bonds", "broken_bonds"});
-  HistoryCsv history;
-  history.open(opt.out_dir + "/history.csv", cols);
-  VtkSeries<D> vtk(opt.out_dir);
-  if (s.vtk) vtk.write(prepared);
-
-  nlohmann::json tests = nlohmann::json::array();
-  std::vector<double> s1_peaks, s3_peaks;
-  for (std::size_t t = 0; t < s.confining_stresses.size(); ++t) {
-    const double sigma3 = s.confining_stresses[t];
-    lab.w = prepared;
-    World<D>& w = lab.w;
+  // Isotropic re-consolidation of the prepared sample to this test's confining stress.
+  void begin_test() {
+    w = prepared;
     w.local_damping = s.shear_damping;
-    // Isotropic re-consolidation to this test's confining stress.
-    std::vector<std::shared_ptr<StressServo<D>>> servos;
+    shear = Shear<D>{};
+    phase = Phase::kConsolidation;
+    install_controllers(true);
+  }
+
+  bool consolidated(double unb) const {
     for (int k = 0; k < D; ++k)
-      servos.push_back(std::make_shared<StressServo<D>>(lab.box, k, sigma3, s.servo_gain));
-    w.controllers.assign(servos.begin(), servos.end());
-    auto consolidated = [&](double unb) {
-      for (int k = 0; k < D; ++k)
-        if (std::abs(lab.box.stress(w, k) - sigma3) > s.stress_tolerance * sigma3) return false;
-      return unb < s.unbalanced_tolerance;
-    };
-    // A sample whose stresses are on target but whose unbalanced force stays just above
-    // the tolerance (servo and damping jiggle) goes on after consolidation_max_steps, with
-    // a warning in its results; one whose stresses are off keeps trying, up to max_steps.
-    std::string consolidation_warning;
-    if (!lab.run_until("consolidation", s.consolidation_max_steps, 200, consolidated)) {
-      bool on_target = true;
-      for (int k = 0; k < D; ++k)
-        on_target =
-            on_target && std::abs(lab.box.stress(w, k) - sigma3) <= s.stress_tolerance * sigma3;
-      if (on_target) {
-        consolidation_warning =
-            cat("unbalanced force ratio ", format_number(unbalanced_force_ratio(w)),
-                " above the tolerance after ", s.consolidation_max_steps,
-                " consolidation steps; the test went on");
-      } else if (!lab.run_until("consolidation", s.max_compaction_steps, 200, consolidated)) {
-        throw std::runtime_error("the sample did not consolidate to " + format_number(sigma3) +
+      if (std::abs(box.stress(w, k) - sigma3()) > s.stress_tolerance * sigma3()) return false;
+    return unb < s.unbalanced_tolerance;
+  }
+
+  // A sample whose stresses are on target but whose unbalanced force stays just above
+  // the tolerance (servo and damping jiggle) goes on after consolidation_max_steps, with
+  // a warning in its results; one whose stresses are off keeps trying, up to max_steps.
+  void consolidation() {
+    auto done = [&](double unb) { return consolidated(unb); };
+    if (phase == Phase::kConsolidationMore) {
+      if (!run_until("consolidation", s.max_compaction_steps, 200, done))
+        throw std::runtime_error("the sample did not consolidate to " + format_number(sigma3()) +
                                  " Pa");
-      }
+      begin_compression();
+      return;
     }
-    std::size_t bonds_made = 0;
-    if (s.bonds_create == "before_shear") bonds_made = create_bonds(w, s.bond_gap_tolerance);
-    const std::uint64_t broken0 = w.broken_bonds;
-    const double porosity0 = lab.porosity();
-    const double height0 = lab.box.size(w)[axial];
-    const double d0 = equivalent_diameter<D>(solid_volume(w) / static_cast<double>(body_count(w)));
-    // Compression: axial wall strain-controlled, lateral walls servo-controlled.
-    w.controllers.clear();
-    for (int k = 0; k < D - 1; ++k) w.controllers.push_back(servos[static_cast<std::size_t>(k)]);
-    w.controllers.push_back(std::make_shared<AxialStrainRate<D>>(lab.box, axial, s.strain_rate));
-    const Vec ref = lab.box.size(w);
+    if (run_until("consolidation", s.consolidation_max_steps, 200, done)) {
+      begin_compression();
+      return;
+    }
+    bool on_target = true;
+    for (int k = 0; k < D; ++k)
+      on_target =
+          on_target && std::abs(box.stress(w, k) - sigma3()) <= s.stress_tolerance * sigma3();
+    if (!on_target) {
+      phase = Phase::kConsolidationMore;
+      return;
+    }
+    shear.warning = cat("unbalanced force ratio ", format_number(unbalanced_force_ratio(w)),
+                        " above the tolerance after ", s.consolidation_max_steps,
+                        " consolidation steps; the test went on");
+    begin_compression();
+  }
+
+  void begin_compression() {
+    if (s.bonds_create == "before_shear") shear.bonds_made = create_bonds(w, s.bond_gap_tolerance);
+    shear.broken0 = w.broken_bonds;
+    shear.porosity0 = porosity();
+    shear.height0 = box.size(w)[kAxial];
+    shear.d0 = equivalent_diameter<D>(solid_volume(w) / static_cast<double>(body_count(w)));
+    phase = Phase::kCompression;
+    install_controllers(false);
+    shear.ref = box.size(w);
+    shear.next_record = 0.0;
+    shear.vtk_left = s.vtk_at_strains;
+    std::sort(shear.vtk_left.begin(), shear.vtk_left.end(), std::greater<>());
+    shear.curve.dimension = D;
+    shear.eps = 0.0;
+  }
+
+  void compression() {
     const double d_eps = s.max_axial_strain / s.history_points;
-    double next_record = 0.0;
-    std::vector<double> vtk_left = s.vtk_at_strains;
-    std::sort(vtk_left.begin(), vtk_left.end(), std::greater<>());
-    CompressionCurve curve;
-    curve.dimension = D;
-    double eps = 0.0;
-    while (eps < s.max_axial_strain) {
+    Shear<D>& h = shear;
+    while (h.eps < s.max_axial_strain) {
       // Wall stresses come every step; the contact statistics (coordination, unbalanced
       // force) only on steps that may be recorded: those that reach the next record point.
-      const double next_eps = eps + 2.0 * s.strain_rate * w.dt;
-      w.measure_this_step = next_eps >= next_record || next_eps >= s.max_axial_strain;
+      const double next_eps = h.eps + 2.0 * s.strain_rate * w.dt;
+      w.measure_this_step = next_eps >= h.next_record || next_eps >= s.max_axial_strain;
       step(w);
-      stop_if_interrupted();
-      ++lab.total_steps;
-      eps = lab.box.strain(w, axial, ref);
-      if (w.measure_this_step && (eps >= next_record || eps >= s.max_axial_strain)) {
-        while (next_record <= eps) next_record += d_eps;
-        double lat[2] = {lab.box.stress(w, 0), D == 3 ? lab.box.stress(w, 1) : 0.0};
-        const double s1 = lab.box.stress(w, axial);
-        const double s2 = D == 3 ? std::max(lat[0], lat[1]) : lat[0];
-        const double s3 = D == 3 ? std::min(lat[0], lat[1]) : lat[0];
-        const double ev = lab.box.volumetric_strain(w, ref);
-        const double p = D == 3 ? (s1 + s2 + s3) / 3.0 : 0.5 * (s1 + s3);
-        std::vector<double> row = {
-            static_cast<double>(t), static_cast<double>(w.step), w.time, eps, ev, s1};
-        if (D == 3) row.push_back(s2);
-        for (double v :
-             {s3, p, s1 - s3, lab.porosity(), coordination_number(w), unbalanced_force_ratio(w)})
-          row.push_back(v);
-        if (bonds) {
-          row.push_back(static_cast<double>(intact_bonds(w)));
-          row.push_back(static_cast<double>(w.broken_bonds - broken0));
-        }
-        history.row(row);
-        curve.axial_strain.push_back(eps);
-        curve.volumetric_strain.push_back(ev);
-        curve.sigma1.push_back(s1);
-        curve.sigma3.push_back(s3);
-        lab.progress.update("compression " + std::to_string(t + 1) + "/" +
-                                std::to_string(s.confining_stresses.size()),
-                            w.step, w.time, eps / s.max_axial_strain,
-                            "q " + format_number(s1 - s3) + " Pa");
-      }
-      while (s.vtk && !vtk_left.empty() && eps >= vtk_left.back()) {
+      ++total_steps;
+      h.eps = box.strain(w, kAxial, h.ref);
+      if (w.measure_this_step && (h.eps >= h.next_record || h.eps >= s.max_axial_strain))
+        record(d_eps);
+      while (s.vtk && !h.vtk_left.empty() && h.eps >= h.vtk_left.back()) {
         vtk.write(w);
-        vtk_left.pop_back();
+        h.vtk_left.pop_back();
       }
+      after_step();
     }
+    finish_test();
+  }
+
+  // One row of history.csv and one point of the curve.
+  void record(double d_eps) {
+    Shear<D>& h = shear;
+    while (h.next_record <= h.eps) h.next_record += d_eps;
+    double lat[2] = {box.stress(w, 0), D == 3 ? box.stress(w, 1) : 0.0};
+    const double s1 = box.stress(w, kAxial);
+    const double s2 = D == 3 ? std::max(lat[0], lat[1]) : lat[0];
+    const double s3 = D == 3 ? std::min(lat[0], lat[1]) : lat[0];
+    const double ev = box.volumetric_strain(w, h.ref);
+    const double p = D == 3 ? (s1 + s2 + s3) / 3.0 : 0.5 * (s1 + s3);
+    std::vector<double> row = {
+        static_cast<double>(test), static_cast<double>(w.step), w.time, h.eps, ev, s1};
+    if (D == 3) row.push_back(s2);
+    for (double v : {s3, p, s1 - s3, porosity(), coordination_number(w), unbalanced_force_ratio(w)})
+      row.push_back(v);
+    if (bonds()) {
+      row.push_back(static_cast<double>(intact_bonds(w)));
+      row.push_back(static_cast<double>(w.broken_bonds - h.broken0));
+    }
+    history.row(row);
+    h.curve.axial_strain.push_back(h.eps);
+    h.curve.volumetric_strain.push_back(ev);
+    h.curve.sigma1.push_back(s1);
+    h.curve.sigma3.push_back(s3);
+    progress.update("compression " + std::to_string(test + 1) + "/" +
+                        std::to_string(s.confining_stresses.size()),
+                    w.step, w.time, h.eps / s.max_axial_strain,
+                    "q " + format_number(s1 - s3) + " Pa");
+  }
+
+  // The test's results; then the next confining stress, or the end.
+  void finish_test() {
+    const Shear<D>& h = shear;
     if (s.vtk) vtk.write(w);
-    const SoilParameters sp = soil_parameters(curve);
+    const SoilParameters sp = soil_parameters(h.curve);
     nlohmann::json r;
-    r["confining_stress"] = sigma3;
-    r["porosity_initial"] = porosity0;
+    r["confining_stress"] = sigma3();
+    r["porosity_initial"] = h.porosity0;
     r["peak_q"] = sp.peak_q;
     r["axial_strain_at_peak"] = sp.axial_strain_at_peak;
     r["phi_peak_deg"] = sp.phi_peak_deg;
@@ -313,42 +484,84 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     r["poisson_ratio"] = sp.poisson_ratio;
     r["dilatancy_deg"] = sp.dilatancy_deg;
     // Peak principal stresses, for envelopes pooled over several runs (studies).
+    const auto& c = h.curve;
     std::size_t ip = 0;
-    for (std::size_t i = 0; i < curve.sigma1.size(); ++i)
-      if (curve.sigma1[i] - curve.sigma3[i] > curve.sigma1[ip] - curve.sigma3[ip]) ip = i;
-    r["sigma1_peak"] = curve.sigma1[ip];
-    r["sigma3_peak"] = curve.sigma3[ip];
+    for (std::size_t i = 0; i < c.sigma1.size(); ++i)
+      if (c.sigma1[i] - c.sigma3[i] > c.sigma1[ip] - c.sigma3[ip]) ip = i;
+    r["sigma1_peak"] = c.sigma1[ip];
+    r["sigma3_peak"] = c.sigma3[ip];
     // Size and rate measures of the representativeness and rate studies.
-    r["grain_size_d0"] = d0;
-    r["sample_height"] = height0;
-    r["d0_over_L"] = d0 / height0;
-    r["inertial_number"] = s.strain_rate * d0 * std::sqrt(s.grain.density / sigma3);
+    r["grain_size_d0"] = h.d0;
+    r["sample_height"] = h.height0;
+    r["d0_over_L"] = h.d0 / h.height0;
+    r["inertial_number"] = s.strain_rate * h.d0 * std::sqrt(s.grain.density / sigma3());
     r["steps"] = w.step;
-    if (bonds) {
+    if (bonds()) {
       r["bonds_at_start"] = s.bonds_create == "before_shear"
-                                ? bonds_made
-                                : intact_bonds(w) + (w.broken_bonds - broken0);
-      r["bonds_broken"] = w.broken_bonds - broken0;
+                                ? h.bonds_made
+                                : intact_bonds(w) + (w.broken_bonds - h.broken0);
+      r["bonds_broken"] = w.broken_bonds - h.broken0;
     }
     r["grains"] = body_count(w);
-    if (!consolidation_warning.empty()) r["warning"] = consolidation_warning;
+    if (!h.warning.empty()) r["warning"] = h.warning;
     tests.push_back(r);
-    s1_peaks.push_back(curve.sigma1[ip]);
-    s3_peaks.push_back(curve.sigma3[ip]);
+    s1_peaks.push_back(c.sigma1[ip]);
+    s3_peaks.push_back(c.sigma3[ip]);
+    if (++test < s.confining_stresses.size()) {
+      begin_test();
+    } else {
+      phase = Phase::kDone;
+      w.controllers.clear();
+    }
   }
+
+  void run_phases() {
+    for (;;) {
+      switch (phase) {
+        case Phase::kCompaction:
+          compaction();
+          break;
+        case Phase::kFrictionReduction:
+          friction_reduction();
+          break;
+        case Phase::kStabilisation:
+          stabilisation();
+          break;
+        case Phase::kConsolidation:
+        case Phase::kConsolidationMore:
+          consolidation();
+          break;
+        case Phase::kCompression:
+          compression();
+          break;
+        case Phase::kDone:
+          return;
+      }
+    }
+  }
+};
+
+template <int D>
+nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
+  Lab<D> lab(s, opt);
+  lab.build();
+  if (opt.resume)
+    lab.resume();
+  else
+    lab.start();
+  lab.run_phases();
   lab.progress.finish();
-  results["tests"] = tests;
-  if (tests.size() == 1)
-    for (auto& [k, v] : tests[0].items()) results[k] = v;  // the contract's flat keys
-  if (several) {
-    const MohrCoulomb mc = fit_mohr_coulomb(s1_peaks, s3_peaks);
+  nlohmann::json results;
+  results["preparation"] = lab.prep;
+  results["tests"] = lab.tests;
+  if (lab.tests.size() == 1)
+    for (auto& [k, v] : lab.tests[0].items()) results[k] = v;  // the contract's flat keys
+  if (s.confining_stresses.size() > 1) {
+    const MohrCoulomb mc = fit_mohr_coulomb(lab.s1_peaks, lab.s3_peaks);
     results["mohr_coulomb"] = {{"cohesion", mc.cohesion}, {"phi_deg", mc.phi_deg}};
   }
-  const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  const nlohmann::json summary =
-      write_run_summary(opt.out_dir, "triaxial", "completed", s.resolved, results,
-                        timing_json(lab.w, wall_s, lab.total_steps, opt.threads));
-  return summary;
+  return write_run_summary(opt.out_dir, "triaxial", "completed", s.resolved, results,
+                           timing_json(lab.w, lab.elapsed(), lab.total_steps, opt.threads));
 }
 
 }  // namespace
@@ -358,7 +571,7 @@ nlohmann::json run_triaxial(const TriaxialSettings& settings, const RunOptions& 
     return settings.dimension == 2 ? run<2>(settings, options) : run<3>(settings, options);
   } catch (const Interrupted& i) {
     write_interrupted_summary(options.out_dir, "triaxial", settings.resolved, i.signal,
-                              options.threads);
+                              options.threads, i.checkpoint);
     throw;
   }
 }

@@ -117,6 +117,10 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
     s.plots = o->boolean("plots", true);
     o->finish();
   }
+  if (auto t = r.table("checkpoint")) {
+    s.checkpoint = read_checkpoint_spec(*t);
+    t->finish();
+  }
   r.finish();
   return s;
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "clumps/grain_mix.hpp"
+#include "io/checkpoint.hpp"
 #include "io/toml_reader.hpp"
 #include "materials/material.hpp"
 
@@ -54,6 +55,7 @@ struct TriaxialSettings {
   std::vector<double> vtk_at_strains;
   // [output]
   bool vtk = true, plots = true;
+  CheckpointSpec checkpoint;  // [checkpoint]
   nlohmann::json resolved;
 };
 

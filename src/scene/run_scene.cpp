@@ -11,10 +11,10 @@
 #include "core/error.hpp"
 #include "core/step.hpp"
 #include "core/world_state.hpp"
-#include "io/checkpoint.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
+#include "io/run_checkpoints.hpp"
 #include "measure/measurements.hpp"
 #include "scene/build_scene.hpp"
 
@@ -39,42 +39,6 @@ Box<D> grains_box(const World<D>& w) {
   return b;
 }
 
-// The newest valid checkpoint of out_dir, checked against this scenario. Only the run's
-// length and the checkpoint and stop settings may change on resuming.
-Checkpoint resume_checkpoint(const SceneSettings& s, const std::string& out_dir, int dimension) {
-  std::vector<std::string> skipped;
-  Checkpoint c;
-  try {
-    c = load_latest_checkpoint(out_dir, &skipped);
-  } catch (const CheckpointError& e) {
-    throw InputError(s.file, 0, "", std::string("cannot resume: ") + e.what());
-  }
-  for (const auto& why : skipped)
-    std::fprintf(stderr, "warning: skipped checkpoint %s\n", why.c_str());
-  if (c.kind != "scene" || c.dimension != dimension)
-    throw InputError(s.file, 0, "kind",
-                     "cannot resume: " + c.path + " is a " + std::to_string(c.dimension) + "D '" +
-                         c.kind + "' run's checkpoint");
-  nlohmann::json saved = nlohmann::json::parse(c.scenario, nullptr, false);
-  if (saved.is_discarded())
-    throw InputError(s.file, 0, "", "cannot resume: unreadable settings in " + c.path);
-  for (const auto& op : nlohmann::json::diff(saved, s.resolved)) {
-    const std::string path = op["path"].get<std::string>();
-    std::string key = path.substr(1);
-    std::replace(key.begin(), key.end(), '/', '.');
-    for (const char* free : {"time/duration", "time/steps", "checkpoint", "stop"})
-      if (path.rfind(std::string("/") + free, 0) == 0) key.clear();
-    if (key.empty() || key == "file") continue;
-    throw InputError(s.file, 0, key,
-                     "differs from the setting of the run being resumed (" + c.path +
-                         "); only time.duration, time.steps, [checkpoint] and [stop] may change");
-  }
-  discard_checkpoints_after(out_dir, c.step);
-  std::fprintf(stderr, "resuming from %s (step %llu, t = %g s)\n", c.path.c_str(),
-               static_cast<unsigned long long>(c.step), c.time);
-  return c;
-}
-
 template <int D>
 nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   using Clock = std::chrono::steady_clock;
@@ -89,9 +53,11 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   std::uint8_t finished = 0;  // the final outputs are written
   bool at_rest = false;
   std::string stop_reason = "end of duration";
+  RunCheckpoints checkpoints("scene", D, s.resolved, opt.out_dir, s.checkpoint);
   Checkpoint resumed;
   if (opt.resume) {
-    resumed = resume_checkpoint(s, opt.out_dir, D);
+    // A finished run may be extended, and may stop on other criteria.
+    resumed = checkpoints.resume(s.file, {"time.duration", "time.steps", "stop"});
     StateReader in(resumed.world.data(), resumed.world.size());
     load_world_state(in, w);
   } else if (s.bonds_initial) {
@@ -146,25 +112,14 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   auto elapsed = [&] {
     return wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
   };
-  std::string last_checkpoint;
-  std::uint64_t last_checkpoint_step = 0;
-  double last_checkpoint_wall = elapsed();
+  checkpoints.set_wall_origin(elapsed());
   auto checkpoint = [&] {
     StateWriter runner, world;
     runner(bonds_created), runner(elapsed()), runner(finished), runner(stop_reason);
     vtk.save(runner);
     save_world_state(world, w);
-    Checkpoint c{"scene",
-                 D,
-                 w.step,
-                 w.time,
-                 s.resolved.dump(),
-                 std::move(runner.bytes()),
-                 std::move(world.bytes()),
-                 ""};
-    last_checkpoint = write_checkpoint(opt.out_dir, c, s.checkpoint.keep);
-    last_checkpoint_step = w.step;
-    last_checkpoint_wall = elapsed();
+    checkpoints.write(w.step, w.time, std::move(runner.bytes()), std::move(world.bytes()),
+                      elapsed());
   };
   auto record = [&]() {
     const double wall_now = elapsed();
@@ -240,18 +195,15 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
         status = "interrupted";
         break;
       }
-      if ((s.checkpoint.every_steps > 0 && w.step % s.checkpoint.every_steps == 0) ||
-          (s.checkpoint.every_seconds > 0.0 &&
-           elapsed() - last_checkpoint_wall >= s.checkpoint.every_seconds))
-        checkpoint();
+      if (checkpoints.due(w.step, elapsed())) checkpoint();
     }
     if (status == "completed") check_finite(w);
   } catch (const InstabilityError& e) {
     status = "unstable";
     message = e.what();
-    if (!last_checkpoint.empty())
-      message += "; last checkpoint: " + last_checkpoint + " (step " +
-                 std::to_string(last_checkpoint_step) + ")";
+    if (!checkpoints.last().empty())
+      message += "; last checkpoint: " + checkpoints.last() + " (step " +
+                 std::to_string(checkpoints.last_step()) + ")";
   }
   progress.finish();
   const double wall_s = elapsed();
@@ -267,7 +219,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
                            : status == "interrupted"
                                ? "signal " + std::to_string(interrupt_signal())
                                : message;
-  if (!last_checkpoint.empty()) results["checkpoint"] = last_checkpoint;
+  if (!checkpoints.last().empty()) results["checkpoint"] = checkpoints.last();
   results["time"] = w.time;
   results["steps"] = w.step;
   results["dt"] = w.dt;
@@ -318,7 +270,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
       write_run_summary(opt.out_dir, "scene", status, s.resolved, results,
                         timing_json(w, wall_s, w.step, opt.threads));
   if (status == "unstable") throw InstabilityError(message);
-  if (status == "interrupted") throw Interrupted{interrupt_signal(), last_checkpoint};
+  if (status == "interrupted") throw Interrupted{interrupt_signal(), checkpoints.last()};
   return summary;
 }
 

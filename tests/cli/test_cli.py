@@ -3,6 +3,7 @@
 Run by CTest: python3 test_cli.py GEODEM_BINARY REPO_ROOT
 """
 import csv
+import hashlib
 import json
 import os
 import random
@@ -487,20 +488,6 @@ class CheckpointTest(unittest.TestCase):
     def test_sigterm_checkpoints_and_resume_is_bitwise(self):
         self.stop_and_resume(signal.SIGTERM, stops=3, seed=2)
 
-    def test_sigterm_stops_a_lab_test_cleanly(self):
-        # The lab kinds write no checkpoint yet, but stop after a whole step with their
-        # outputs and a summary that says so.
-        out = self.dir / "biaxial"
-        p = subprocess.Popen([GEODEM, "run", str(ROOT / "examples" / "biaxial2d" / "scenario.toml"),
-                              "--out", str(out), "--quiet"], stderr=subprocess.PIPE, text=True)
-        time.sleep(1.5)
-        p.send_signal(signal.SIGTERM)
-        err = p.communicate(timeout=120)[1]
-        self.assertEqual(p.returncode, 143, err)
-        s = json.loads((out / "summary.json").read_text())
-        self.assertEqual(s["status"], "interrupted")
-        self.assertIn("signal 15", s["results"]["stop_reason"])
-
     def test_damaged_newest_checkpoint_falls_back_to_the_previous(self):
         out = self.dir / "damaged"
         shutil.copytree(self.ref, out)
@@ -540,6 +527,170 @@ class CheckpointTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         s = json.loads((self.ref / "summary.json").read_text())
         self.assertAlmostEqual(s["results"]["time"], 0.32, delta=1e-3)
+
+
+# A small biaxial test that passes through every stage of the triaxial kind: clumps, rolling
+# resistance, cohesive bonds made after compaction, friction reduction to a target
+# porosity, two confining stresses (each from the prepared sample), VTK frames.
+LAB_CHECKPOINT_TRIAXIAL = """
+kind = "triaxial"
+dimension = 2
+seed = 3
+[sample]
+box = [0.4, 0.8]
+count = 150
+initial_porosity = 0.9
+grain = "pair_0.9"
+[material]
+density = 2650.0
+young = 1e8
+kt_over_kn = 0.5
+friction = 0.5
+rolling_friction = 0.1
+normal_cohesion = 5e4
+shear_cohesion = 5e4
+[compaction]
+confining_stress = 1e5
+target_porosity = 0.25
+[shear]
+strain_rate = 0.05
+max_axial_strain = 0.01
+confining_stress = [5e4, 1e5]
+vtk_at_strains = [0.005]
+[output]
+plots = false
+"""
+
+
+def output_digests(folder):
+    """SHA-256 of every CSV and VTK file of a run's folder, and its summary's results."""
+    folder = Path(folder)
+    out = {}
+    for p in sorted(folder.rglob("*")):
+        if p.is_file() and p.suffix in (".csv", ".vtu", ".vtp", ".pvd"):
+            out[str(p.relative_to(folder))] = hashlib.sha256(p.read_bytes()).hexdigest()
+    results = json.loads((folder / "summary.json").read_text())["results"]
+    results.pop("checkpoint", None)
+    out["summary results"] = json.dumps(results, sort_keys=True)
+    return out
+
+
+class LabCheckpointTest(unittest.TestCase):
+    """Lab tests resumed from a checkpoint in any of their stages end as one that never
+    stopped: the same CSV files, VTK files and results, bit for bit."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = Path(self.tmp.name)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def reference(self, text, every_steps):
+        scenario = self.dir / "s.toml"
+        scenario.write_text(text + f"\n[checkpoint]\nevery_steps = {every_steps}\nkeep = 1000\n")
+        ref = self.dir / "ref"
+        t0 = time.monotonic()
+        r = run("run", str(scenario), "--out", str(ref), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return scenario, ref, time.monotonic() - t0
+
+    def resume_from_checkpoints(self, scenario, ref, at_least, steps=None):
+        """Resumes a copy of the finished reference from each of its checkpoints (or from
+        the first one at or after each of `steps`, and the last), as if the run had been
+        killed after it: later checkpoints removed, later rows and frames still in the copy
+        (the resumed run must trim them)."""
+        expected = output_digests(ref)
+        checkpoints = sorted((ref / "checkpoint").glob("checkpoint_*.bin"))
+        self.assertGreaterEqual(len(checkpoints), at_least)
+        if steps is not None:
+            step_of = {cp: int(cp.stem.split("_")[1]) for cp in checkpoints}
+            chosen = {checkpoints[-1]}
+            for target in steps:
+                after = [cp for cp in checkpoints if step_of[cp] >= target]
+                if after:
+                    chosen.add(after[0])
+            checkpoints = sorted(chosen)
+        for cp in checkpoints:
+            out = self.dir / ("from_" + cp.stem)
+            shutil.copytree(ref, out)
+            for later in (out / "checkpoint").glob("checkpoint_*.bin"):
+                if later.name > cp.name:
+                    later.unlink()
+            r = run("run", str(scenario), "--resume", str(out), "--quiet")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn(cp.name, r.stderr)
+            got = output_digests(out)
+            self.assertEqual(sorted(got), sorted(expected), cp.name)
+            for name in expected:
+                self.assertEqual(got[name], expected[name], f"resumed from {cp.name}: {name}")
+            shutil.rmtree(out)
+        return expected
+
+    def test_triaxial_resumes_from_every_stage_bitwise(self):
+        scenario, ref, seconds = self.reference(LAB_CHECKPOINT_TRIAXIAL, 2500)
+        prep = json.loads((ref / "summary.json").read_text())["results"]["preparation"]
+        self.assertGreater(prep["bonds"], 0)
+        with open(ref / "preparation.csv") as f:
+            phases = {row["phase"] for row in csv.DictReader(f)}
+        self.assertEqual(phases, {"1", "2", "3"})  # compaction, friction reduction, stabilisation
+        # From the first checkpoint in each stage (and near its middle): compaction,
+        # friction reduction, stabilisation, then each test's consolidation and compression.
+        res = json.loads((ref / "summary.json").read_text())["results"]
+        steps = [res["preparation"]["steps"] + 1]
+        for name, column in (("preparation.csv", "phase"), ("history.csv", "test")):
+            with open(ref / name) as f:
+                rows = list(csv.DictReader(f))
+            for code in sorted({r[column] for r in rows}):
+                stage = [int(float(r["step"])) for r in rows if r[column] == code]
+                steps += [stage[0], stage[len(stage) // 2], stage[-1] + 1]
+        expected = self.resume_from_checkpoints(scenario, ref, at_least=12, steps=steps)
+
+        # SIGTERM: a checkpoint, an "interrupted" summary naming it, exit 143; then resumed.
+        out = self.dir / "term"
+        p = subprocess.Popen([GEODEM, "run", str(scenario), "--out", str(out), "--quiet"],
+                             stderr=subprocess.PIPE, text=True)
+        time.sleep(0.5 * seconds)
+        p.send_signal(signal.SIGTERM)
+        err = p.communicate(timeout=120)[1]
+        if p.returncode != 0:  # (unless it had already finished)
+            self.assertEqual(p.returncode, 143, err)
+            self.assertIn("--resume", err)
+            s = json.loads((out / "summary.json").read_text())
+            self.assertEqual(s["status"], "interrupted")
+            self.assertTrue(Path(s["results"]["checkpoint"]).is_file())
+            r = run("run", str(scenario), "--resume", str(out), "--quiet")
+            self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(output_digests(out), expected)
+
+        # Another scenario's checkpoint is refused, naming the key that differs.
+        r = run("run", str(scenario), "--resume", str(ref), "--quiet",
+                "--set", "shear.strain_rate=0.06")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("shear.strain_rate", r.stderr)
+
+    def test_pullout_resumes_from_every_stage_bitwise(self):
+        # An L anchor under a surcharge plate, with a free front face: every stage of the
+        # preparation (foundation, trench fill, cover, consolidation) and the pull.
+        text = SMALL_PULLOUT.format(shape="L", trench="trench_depth = 0.05")
+        text = text.replace('front = "wall"', 'front = "free"')
+        text = text.replace("[pull]", "[surcharge]\npressure = 2000.0\n[pull]")
+        text = text.replace("max_displacement = 0.03", "max_displacement = 0.01")
+        text += "[output]\nplots = false\n"
+        scenario, ref, _ = self.reference(text, 6000)
+        # From the first checkpoint in each stage of the preparation and near its middle,
+        # and from the first of the pull and the last.
+        with open(ref / "preparation.csv") as f:
+            rows = list(csv.DictReader(f))
+        steps = []
+        for code in sorted({r["stage"] for r in rows}):
+            stage = [int(float(r["step"])) for r in rows if r["stage"] == code]
+            steps += [stage[0], stage[len(stage) // 2]]
+        res = json.loads((ref / "summary.json").read_text())["results"]
+        steps.append(res["preparation"]["steps"] + 1)
+        self.resume_from_checkpoints(scenario, ref, at_least=12, steps=steps)
+        self.assertGreater(res["analytic"]["surcharge_measured"], 0.0)
+        self.assertGreater(res["preparation"]["fill_grains"], 0)
 
 
 if __name__ == "__main__":

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "controllers/radius_growth.hpp"
+#include "controllers/stress_servo.hpp"
 #include "core/world_state.hpp"
 #include "io/checkpoint.hpp"
 #include "pressed_packing.hpp"
@@ -80,6 +82,68 @@ TYPED_TEST(WorldCheckpoint, ResumedWorldContinuesBitForBit) {
     EXPECT_EQ(a.step, b.step);
     EXPECT_EQ(kinetic_energy(a), kinetic_energy(b));
   }
+}
+
+// Controllers travel with the world's state: a world loaded with them continues bit for bit.
+TYPED_TEST(WorldCheckpoint, ControllersTravelWithTheWorld) {
+  constexpr int D = TypeParam::value;
+  auto controlled = [](World<D> w) {
+    LabBox<D> box;  // add_box's walls: lo0, hi0, lo1, hi1 (, lo2, hi2)
+    for (int k = 0; k < D; ++k) box.lo[k] = 2 * k, box.hi[k] = 2 * k + 1;
+    w.controllers.push_back(std::make_shared<StressServo<D>>(box, 0, 1.0, 0.5));
+    w.controllers.push_back(std::make_shared<RadiusGrowth<D>>(box, 1.0, 1.001, 1.0001));
+    return w;
+  };
+  World<D> a = controlled(make_world<D>(false));
+  advance(a, 0, 150);
+  StateWriter saved;
+  save_world_state(saved, a);
+  World<D> b = controlled(make_world<D>(false));
+  StateReader in(saved.bytes().data(), saved.bytes().size());
+  load_world_state(in, b);
+  EXPECT_TRUE(in.at_end());
+  advance(a, 150, 300);
+  advance(b, 150, 300);
+  EXPECT_TRUE(same_bits(a.particles.pos, b.particles.pos));
+  EXPECT_TRUE(a.walls[1].point == b.walls[1].point);
+  for (std::size_t k = 0; k < a.controllers.size(); ++k) {
+    StateWriter sa, sb;
+    a.controllers[k]->save_state(sa);
+    b.controllers[k]->save_state(sb);
+    EXPECT_EQ(sa.bytes(), sb.bytes()) << "controller " << k;
+  }
+}
+
+// The servo's integral term and the radius growth's switch are restored: a loaded servo
+// drives its walls as the original does, one started afresh does not.
+TEST(ControllerState, ServoAndGrowthResumeWhereTheyWere) {
+  World<2> w;
+  w.materials = {linear_material(1e6, 5e5, 0.5, 0.3, 2600.0)};
+  const LabBox<2> box = LabBox<2>::add_to(w, Vec<2>(0.0, 0.0), Vec<2>(1.0, 1.0), 0);
+  w.dt = 1.0;
+  // 2000 Pa on the faces normal to x (area 1 m per m), against a target of 1000 Pa.
+  for (auto k : {box.lo[0], box.hi[0]}) {
+    w.walls[k].stiffness = 1e6;
+    w.walls[k].force = -2000.0 * w.walls[k].normal;
+  }
+  StressServo<2> servo(box, 0, 1000.0, 0.5);
+  RadiusGrowth<2> growth(box, 500.0, 1.01, 1.001, 1);
+  for (int k = 0; k < 5; ++k) servo.apply(w), growth.apply(w);
+  ASSERT_TRUE(growth.reached());
+  StateWriter out;
+  servo.save_state(out);
+  growth.save_state(out);
+  StressServo<2> loaded(box, 0, 1000.0, 0.5), fresh(box, 0, 1000.0, 0.5);
+  RadiusGrowth<2> loaded_growth(box, 500.0, 1.01, 1.001, 1);
+  StateReader in(out.bytes().data(), out.bytes().size());
+  loaded.load_state(in);
+  loaded_growth.load_state(in);
+  EXPECT_TRUE(in.at_end());
+  EXPECT_TRUE(loaded_growth.reached());
+  World<2> wa = w, wb = w, wf = w;
+  servo.apply(wa), loaded.apply(wb), fresh.apply(wf);
+  EXPECT_TRUE(wa.walls[box.hi[0]].velocity == wb.walls[box.hi[0]].velocity);
+  EXPECT_FALSE(wa.walls[box.hi[0]].velocity == wf.walls[box.hi[0]].velocity);
 }
 
 TYPED_TEST(WorldCheckpoint, RefusesAnotherScenariosWorld) {

@@ -1,0 +1,88 @@
+// A run's checkpoints, for every scenario kind that writes them: when one is due (every
+// so many steps or wall-clock seconds, and on SIGINT/SIGTERM), writing it, and finding
+// the one to resume from. The runner supplies its own state and the world's
+// (io/checkpoint.hpp has the file format).
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/checkpoint.hpp"
+#include "io/interrupt.hpp"
+#include "io/state_archive.hpp"
+
+namespace geodem {
+
+class RunCheckpoints {
+ public:
+  RunCheckpoints(std::string kind, int dimension, const nlohmann::json& resolved,
+                 std::string out_dir, CheckpointSpec spec)
+      : kind_(std::move(kind)),
+        dimension_(dimension),
+        resolved_(resolved),
+        out_dir_(std::move(out_dir)),
+        spec_(spec) {}
+
+  // The newest valid checkpoint of the output folder (damaged ones are reported on stderr
+  // and skipped), checked against this run: same kind and dimension, and settings that
+  // differ only under the keys of `may_change` (besides [checkpoint]). Checkpoint files
+  // after it are deleted. Problems are InputErrors naming `scenario_file`.
+  Checkpoint resume(const std::string& scenario_file, const std::vector<std::string>& may_change);
+
+  // A periodic checkpoint is due after this step.
+  bool due(std::uint64_t step, double elapsed_s) const {
+    return (spec_.every_steps > 0 && step % spec_.every_steps == 0) ||
+           (spec_.every_seconds > 0.0 && elapsed_s - last_wall_ >= spec_.every_seconds);
+  }
+
+  // Writes a checkpoint of the runner's state and the world's; returns its path.
+  const std::string& write(std::uint64_t step, double time, std::string runner, std::string world,
+                           double elapsed_s);
+
+  // For run loops after a whole step: writes a checkpoint when one is due or a signal has
+  // come, then stops on the signal (throws Interrupted naming the checkpoint).
+  // save(StateWriter& runner, StateWriter& world) fills the two parts.
+  template <class Save>
+  void after_step(std::uint64_t step, double time, double elapsed_s, Save&& save) {
+    const int signal = interrupt_signal();
+    if (signal || due(step, elapsed_s)) {
+      StateWriter runner, world;
+      save(runner, world);
+      write(step, time, std::move(runner.bytes()), std::move(world.bytes()), elapsed_s);
+    }
+    if (signal) throw Interrupted{signal, last_};
+  }
+
+  // Restarts the wall-clock period (a resumed run counts from its saved elapsed time).
+  void set_wall_origin(double elapsed_s) { last_wall_ = elapsed_s; }
+  const std::string& last() const { return last_; }
+  std::uint64_t last_step() const { return last_step_; }
+  const CheckpointSpec& spec() const { return spec_; }
+
+ private:
+  std::string kind_;
+  int dimension_;
+  const nlohmann::json& resolved_;
+  std::string out_dir_;
+  CheckpointSpec spec_;
+  std::string last_;
+  std::uint64_t last_step_ = 0;
+  double last_wall_ = 0.0;
+};
+
+// A JSON value in a state archive, as its text (doubles keep all their digits).
+template <class Archive>
+void archive_json(Archive& a, nlohmann::json& j) {
+  if constexpr (Archive::kLoading) {
+    std::string text;
+    a(text);
+    j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_discarded()) throw CheckpointError("unreadable results in the checkpoint");
+  } else {
+    a(j.dump());
+  }
+}
+
+}  // namespace geodem
