@@ -70,15 +70,26 @@ std::string checkpoint_folder(const std::string& out_dir) {
 }
 
 std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep) {
-  StateWriter payload;
-  payload(c.kind), payload(c.dimension), payload(c.step), payload(c.time);
-  payload(c.scenario), payload(c.runner), payload(c.world);
-  const std::string& body = payload.bytes();
+  // The payload is the archive of (kind, dimension, step, time, scenario, runner, world),
+  // written in pieces so that the world's bytes are not copied once more: the small fields
+  // and each string's length prefix, then the runner's and the world's bytes as they are.
+  StateWriter small, runner_len, world_len;
+  small(c.kind), small(c.dimension), small(c.step), small(c.time), small(c.scenario);
+  runner_len(static_cast<std::uint64_t>(c.runner.size()));
+  world_len(static_cast<std::uint64_t>(c.world.size()));
+  const std::string* pieces[] = {&small.bytes(), &runner_len.bytes(), &c.runner, &world_len.bytes(),
+                                 &c.world};
+  std::uint64_t length = 0;
+  uLong crc = crc32_z(0L, Z_NULL, 0);
+  for (const std::string* piece : pieces) {
+    length += piece->size();
+    crc = crc32_z(crc, reinterpret_cast<const Bytef*>(piece->data()),
+                  static_cast<z_size_t>(piece->size()));
+  }
 
   std::string head(kMagic, sizeof kMagic);
   auto put = [&head](const auto& v) { head.append(reinterpret_cast<const char*>(&v), sizeof v); };
-  put(kFormatVersion), put(kMachineMark), put(static_cast<std::uint64_t>(body.size()));
-  put(crc32_of(body.data(), body.size()));
+  put(kFormatVersion), put(kMachineMark), put(length), put(static_cast<std::uint32_t>(crc));
 
   const std::string folder = checkpoint_folder(out_dir);
   fs::create_directories(folder);
@@ -90,7 +101,8 @@ std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, in
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot write " + tmp);
     out.write(head.data(), static_cast<std::streamsize>(head.size()));
-    out.write(body.data(), static_cast<std::streamsize>(body.size()));
+    for (const std::string* piece : pieces)
+      out.write(piece->data(), static_cast<std::streamsize>(piece->size()));
     out.flush();
     if (!out) throw std::runtime_error("error writing " + tmp + " (disk full?)");
   }

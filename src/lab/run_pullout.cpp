@@ -477,8 +477,9 @@ struct Pullout {
     w.walls.push_back(plate);
     w.resolve_pair_laws();
     set_interface_laws();
-    surcharge = std::make_shared<SurfacePressure<2>>(w.walls.size() - 1, s.surcharge,
-                                                     0.05 * s.radius / w.dt);
+    // Speed cap: a twentieth of a radius per step (a resumed run loads the saved cap).
+    const double vmax = w.dt > 0.0 ? 0.05 * s.radius / w.dt : 0.0;
+    surcharge = std::make_shared<SurfacePressure<2>>(w.walls.size() - 1, s.surcharge, vmax);
     w.controllers = {surcharge};
   }
 
