@@ -31,7 +31,9 @@ class RunCheckpoints {
   // after it are deleted. Problems are InputErrors naming `scenario_file`.
   Checkpoint resume(const std::string& scenario_file, const std::vector<std::string>& may_change);
 
-  // A periodic checkpoint is due after this step.
+  // A periodic checkpoint is due after this step. `step` counts the steps of the whole run
+  // (it names and orders the files, so it must grow: a lab test's world restarts its own
+  // count with each confining stress).
   bool due(std::uint64_t step, double elapsed_s) const {
     return (spec_.every_steps > 0 && step % spec_.every_steps == 0) ||
            (spec_.every_seconds > 0.0 && elapsed_s - last_wall_ >= spec_.every_seconds);

@@ -158,14 +158,15 @@ struct Pullout {
 
   // After a whole step: a checkpoint when due, and the stop on a signal.
   void after_step() {
-    checkpoints.after_step(w.step, w.time, elapsed(), [&](StateWriter& runner, StateWriter& world) {
-      visit_state(runner);
-      runner(elapsed());
-      for (const HistoryCsv* f : {&prep_csv, &history, &profiles})
-        runner(static_cast<std::uint64_t>(f->rows()));
-      vtk.save(runner);
-      save_world_state(world, w);
-    });
+    checkpoints.after_step(total_steps, w.time, elapsed(),
+                           [&](StateWriter& runner, StateWriter& world) {
+                             visit_state(runner);
+                             runner(elapsed());
+                             for (const HistoryCsv* f : {&prep_csv, &history, &profiles})
+                               runner(static_cast<std::uint64_t>(f->rows()));
+                             vtk.save(runner);
+                             save_world_state(world, w);
+                           });
   }
 
   void build() {

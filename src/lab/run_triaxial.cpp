@@ -130,23 +130,25 @@ struct Lab {
     shear.visit(a);
   }
 
-  // After a whole step: a checkpoint when due, and the stop on a signal.
+  // After a whole step: a checkpoint when due, and the stop on a signal. Checkpoints are
+  // numbered by the run's step count: the world's restarts with each test's sample.
   void after_step() {
-    checkpoints.after_step(w.step, w.time, elapsed(), [&](StateWriter& runner, StateWriter& world) {
-      visit_state(runner);
-      runner(elapsed());
-      runner(static_cast<std::uint64_t>(prep_csv.rows()));
-      runner(static_cast<std::uint64_t>(history.rows()));
-      vtk.save(runner);
-      const bool tests_begun = phase >= Phase::kConsolidation;
-      runner(static_cast<std::uint8_t>(tests_begun));
-      if (tests_begun) {
-        StateWriter sample;
-        save_world_state(sample, prepared);
-        runner(sample.bytes());
-      }
-      save_world_state(world, w);
-    });
+    checkpoints.after_step(total_steps, w.time, elapsed(),
+                           [&](StateWriter& runner, StateWriter& world) {
+                             visit_state(runner);
+                             runner(elapsed());
+                             runner(static_cast<std::uint64_t>(prep_csv.rows()));
+                             runner(static_cast<std::uint64_t>(history.rows()));
+                             vtk.save(runner);
+                             const bool tests_begun = phase >= Phase::kConsolidation;
+                             runner(static_cast<std::uint8_t>(tests_begun));
+                             if (tests_begun) {
+                               StateWriter sample;
+                               save_world_state(sample, prepared);
+                               runner(sample.bytes());
+                             }
+                             save_world_state(world, w);
+                           });
   }
 
   // Steps with measurement every `every` steps; stops when `done()` holds on a

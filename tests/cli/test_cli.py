@@ -634,15 +634,23 @@ class LabCheckpointTest(unittest.TestCase):
         with open(ref / "preparation.csv") as f:
             phases = {row["phase"] for row in csv.DictReader(f)}
         self.assertEqual(phases, {"1", "2", "3"})  # compaction, friction reduction, stabilisation
+        # Checkpoints are numbered by the run's steps, which go on growing when each test
+        # restarts from the prepared sample (and its step count).
+        summary = json.loads((ref / "summary.json").read_text())
+        res, total = summary["results"], summary["timing"]["steps"]
+        names = sorted(p.name for p in (ref / "checkpoint").glob("checkpoint_*.bin"))
+        self.assertEqual(names, [f"checkpoint_{k:012d}.bin" for k in range(2500, total + 1, 2500)])
         # From the first checkpoint in each stage (and near its middle): compaction,
         # friction reduction, stabilisation, then each test's consolidation and compression.
-        res = json.loads((ref / "summary.json").read_text())["results"]
-        steps = [res["preparation"]["steps"] + 1]
+        prep_steps = res["preparation"]["steps"]
+        offset = {"0": 0, "1": res["tests"][0]["steps"] - prep_steps}  # run steps - world steps
+        steps = [prep_steps + 1, prep_steps + offset["1"] + 1]
         for name, column in (("preparation.csv", "phase"), ("history.csv", "test")):
             with open(ref / name) as f:
                 rows = list(csv.DictReader(f))
             for code in sorted({r[column] for r in rows}):
-                stage = [int(float(r["step"])) for r in rows if r[column] == code]
+                stage = [int(float(r["step"])) + offset.get(code, 0) * (column == "test")
+                         for r in rows if r[column] == code]
                 steps += [stage[0], stage[len(stage) // 2], stage[-1] + 1]
         expected = self.resume_from_checkpoints(scenario, ref, at_least=12, steps=steps)
 
