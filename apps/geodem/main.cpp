@@ -153,8 +153,9 @@ int run_main(int argc, char** argv) {
                                  "a resumed run writes to its own folder; give --resume DIR alone");
       if (l.kind != "scene" && l.kind != "triaxial" && l.kind != "pullout")
         throw geodem::InputError(scenario, 0, "kind",
-                                 "--resume: a study writes no checkpoints; it resumes by "
-                                 "rerunning it into the same folder (its finished runs are kept)");
+                                 "--resume: a study resumes by rerunning it into the same "
+                                 "folder: its finished runs are kept, and with [checkpoint] its "
+                                 "unfinished ones continue from their checkpoints");
       opt.out_dir = out_dir = resume_dir;
       opt.resume = true;
     }

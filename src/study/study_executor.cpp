@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "io/checkpoint.hpp"
 #include "io/output_files.hpp"
 #include "lab/run_triaxial.hpp"
 #include "lab/triaxial_settings.hpp"
@@ -37,6 +38,28 @@ nlohmann::json finished_summary(const std::string& dir, const nlohmann::json& re
   } catch (const nlohmann::json::exception&) {
   }
   return nullptr;
+}
+
+// Runs a study's test. When the study asks for checkpoints (its base scenario's
+// [checkpoint]), a run that was stopped with the study continues from its newest checkpoint,
+// and one whose checkpoints do not fit (another scenario's, damaged) starts afresh. A
+// finished run's checkpoints are deleted: it is reused from its summary.
+nlohmann::json run_or_resume(const TriaxialSettings& settings, RunOptions ro) {
+  const std::string folder = checkpoint_folder(ro.out_dir);
+  std::error_code ec;
+  ro.resume = settings.checkpoint.enabled() && std::filesystem::exists(folder, ec) &&
+              !std::filesystem::is_empty(folder, ec);
+  nlohmann::json summary;
+  try {
+    summary = run_triaxial(settings, ro);
+  } catch (const InputError&) {
+    if (!ro.resume) throw;
+    std::filesystem::remove_all(folder, ec);
+    ro.resume = false;
+    summary = run_triaxial(settings, ro);
+  }
+  std::filesystem::remove_all(folder, ec);
+  return summary;
 }
 
 std::string format_duration(double s) {
@@ -172,7 +195,7 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
           RunOptions ro;
           ro.out_dir = dir;
           ro.quiet = true;
-          summary = run_triaxial(settings[i], ro);
+          summary = run_or_resume(settings[i], ro);
           std::error_code ec;
           std::filesystem::remove(cat(dir, "/vtk"), ec);  // empty: the runs write no VTK
         } catch (const InstabilityError& e) {

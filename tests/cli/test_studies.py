@@ -159,6 +159,34 @@ class StudyTest(unittest.TestCase):
             return
         self.fail("no attempt interrupted the study mid-way")
 
+    def test_killed_study_continues_its_unfinished_runs_from_their_checkpoints(self):
+        # One run at a time, a checkpoint every 1,000 steps: killed mid-run, the study's
+        # rerun continues that run from its checkpoint and ends as one never stopped.
+        study = self.write(SERIES.replace("seeds = 3", "seeds = 1") +
+                           "[checkpoint]\nevery_steps = 1000\n")
+        fresh = self.dir / "fresh"
+        r = run("run", study, "--out", str(fresh), "--threads", "1", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(list(fresh.glob("runs/*/checkpoint")), [])  # deleted when done
+        out = self.dir / "killed"
+        p = subprocess.Popen([GEODEM, "run", study, "--out", str(out), "--threads", "1",
+                              "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        deadline = time.time() + 120
+        while time.time() < deadline and p.poll() is None:
+            if any(out.glob("runs/*/checkpoint/checkpoint_*.bin")):
+                break
+            time.sleep(0.005)
+        time.sleep(0.2)
+        p.send_signal(signal.SIGKILL)
+        p.wait()
+        self.assertFalse((out / "summary.json").exists(), "the study ended before the kill")
+        r = run("run", study, "--out", str(out), "--threads", "1", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("resuming from", r.stderr)
+        self.assertEqual(results(out), results(fresh))
+        for f in fresh.glob("runs/*/history.csv"):
+            self.assertEqual((out / f.relative_to(fresh)).read_bytes(), f.read_bytes(), f)
+
     def test_changed_runs_are_not_reused(self):
         study = self.write(SERIES)
         out = self.dir / "out"
