@@ -57,6 +57,13 @@ class RunCheckpoints {
     if (signal) throw Interrupted{signal, last_};
   }
 
+  // An instability's message with the checkpoint to go back to, when there is one.
+  std::string diagnosis(const std::string& what) const {
+    return last_.empty() ? what
+                         : what + "; last checkpoint: " + last_ + " (step " +
+                               std::to_string(last_step_) + ")";
+  }
+
   // Restarts the wall-clock period (a resumed run counts from its saved elapsed time).
   void set_wall_origin(double elapsed_s) { last_wall_ = elapsed_s; }
   const std::string& last() const { return last_; }

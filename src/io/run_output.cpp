@@ -91,13 +91,12 @@ void VtkSeries<D>::write(const World<D>& world) {
   ++count_;
 }
 
-void write_interrupted_summary(const std::string& dir, const std::string& kind,
-                               const nlohmann::json& scenario, int signal, int threads,
-                               const std::string& checkpoint) {
-  nlohmann::json results = {{"status", "interrupted"},
-                            {"stop_reason", "signal " + std::to_string(signal)}};
+void write_stopped_summary(const std::string& dir, const std::string& kind,
+                           const nlohmann::json& scenario, const std::string& status,
+                           const std::string& reason, const std::string& checkpoint, int threads) {
+  nlohmann::json results = {{"status", status}, {"stop_reason", reason}};
   if (!checkpoint.empty()) results["checkpoint"] = checkpoint;
-  write_run_summary(dir, kind, "interrupted", scenario, results, {{"threads", threads}});
+  write_run_summary(dir, kind, status, scenario, results, {{"threads", threads}});
 }
 
 template <int D>

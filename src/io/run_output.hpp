@@ -29,11 +29,12 @@ nlohmann::json write_run_summary(const std::string& dir, const std::string& kind
                                  const std::string& status, const nlohmann::json& scenario,
                                  const nlohmann::json& results, const nlohmann::json& timing);
 
-// summary.json of a lab test stopped by a signal: status "interrupted", the checkpoint
-// written (resume with --resume); the history and VTK files written so far are whole.
-void write_interrupted_summary(const std::string& dir, const std::string& kind,
-                               const nlohmann::json& scenario, int signal, int threads,
-                               const std::string& checkpoint);
+// summary.json of a lab test that stopped before its end: status "interrupted" (a signal)
+// or "unstable", the reason, and the last checkpoint written (resume with --resume); the
+// history and VTK files written so far are whole.
+void write_stopped_summary(const std::string& dir, const std::string& kind,
+                           const nlohmann::json& scenario, const std::string& status,
+                           const std::string& reason, const std::string& checkpoint, int threads);
 
 // Timing block of summary.json from a world's counters.
 template <int D>

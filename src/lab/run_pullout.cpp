@@ -655,7 +655,14 @@ nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt)
     run.resume();
   else
     run.start();
-  run.run_phases();
+  try {
+    run.run_phases();
+  } catch (const InstabilityError& e) {
+    const std::string why = run.checkpoints.diagnosis(e.what());
+    write_stopped_summary(opt.out_dir, "pullout", s.resolved, "unstable", why,
+                          run.checkpoints.last(), opt.threads);
+    throw InstabilityError(why);
+  }
   run.progress.finish();
   const World<2>& w = run.w;
   const Pull& u = run.pull;
@@ -698,8 +705,8 @@ nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
   try {
     return run_pullout_test(s, opt);
   } catch (const Interrupted& i) {
-    write_interrupted_summary(opt.out_dir, "pullout", s.resolved, i.signal, opt.threads,
-                              i.checkpoint);
+    write_stopped_summary(opt.out_dir, "pullout", s.resolved, "interrupted",
+                          "signal " + std::to_string(i.signal), i.checkpoint, opt.threads);
     throw;
   }
 }

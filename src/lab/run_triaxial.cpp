@@ -551,7 +551,14 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     lab.resume();
   else
     lab.start();
-  lab.run_phases();
+  try {
+    lab.run_phases();
+  } catch (const InstabilityError& e) {
+    const std::string why = lab.checkpoints.diagnosis(e.what());
+    write_stopped_summary(opt.out_dir, "triaxial", s.resolved, "unstable", why,
+                          lab.checkpoints.last(), opt.threads);
+    throw InstabilityError(why);
+  }
   lab.progress.finish();
   nlohmann::json results;
   results["preparation"] = lab.prep;
@@ -572,8 +579,8 @@ nlohmann::json run_triaxial(const TriaxialSettings& settings, const RunOptions& 
   try {
     return settings.dimension == 2 ? run<2>(settings, options) : run<3>(settings, options);
   } catch (const Interrupted& i) {
-    write_interrupted_summary(options.out_dir, "triaxial", settings.resolved, i.signal,
-                              options.threads, i.checkpoint);
+    write_stopped_summary(options.out_dir, "triaxial", settings.resolved, "interrupted",
+                          "signal " + std::to_string(i.signal), i.checkpoint, options.threads);
     throw;
   }
 }

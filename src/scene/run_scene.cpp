@@ -200,10 +200,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     if (status == "completed") check_finite(w);
   } catch (const InstabilityError& e) {
     status = "unstable";
-    message = e.what();
-    if (!checkpoints.last().empty())
-      message += "; last checkpoint: " + checkpoints.last() + " (step " +
-                 std::to_string(checkpoints.last_step()) + ")";
+    message = checkpoints.diagnosis(e.what());
   }
   progress.finish();
   const double wall_s = elapsed();

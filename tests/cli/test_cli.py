@@ -296,6 +296,20 @@ create = "initial"
         self.assertEqual(s["status"], "unstable")
         self.assertTrue((out / "history.csv").exists())
 
+    def test_unstable_lab_test_exits_3_naming_its_last_checkpoint(self):
+        # The axial wall driven at 100 /s crushes the sample: overlaps beyond the limit.
+        text = LAB_CHECKPOINT_TRIAXIAL.replace("strain_rate = 0.05", "strain_rate = 100.0")
+        text = text.replace("max_axial_strain = 0.01", "max_axial_strain = 0.5")
+        out = self.dir / "out"
+        r = run("run", self.write(text + "[checkpoint]\nevery_steps = 5000\n"), "--out",
+                str(out), "--quiet")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("last checkpoint", r.stderr)
+        s = json.loads((out / "summary.json").read_text())
+        self.assertEqual(s["status"], "unstable")
+        self.assertIn("overlap", s["results"]["stop_reason"])
+        self.assertTrue(Path(s["results"]["checkpoint"]).is_file())
+
     def test_particle_file(self):
         (self.dir / "grains.txt").write_text("# id x y z\n1 0.05 0.05 0.01\n2, 0.05, 0.05, 0.03\n")
         text = scene(3).replace("[[clouds]]", "[[particle_files]]\nfile = \"grains.txt\"\n"
