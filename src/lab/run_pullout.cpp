@@ -30,6 +30,7 @@
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
 #include "lab/anchorage.hpp"
+#include "lab/lab_phases.hpp"
 #include "lab/soil_editing.hpp"
 #include "measure/measurements.hpp"
 
@@ -650,20 +651,7 @@ struct Pullout {
 namespace {
 nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt) {
   Pullout run(s, opt);
-  run.build();
-  if (opt.resume)
-    run.resume();
-  else
-    run.start();
-  try {
-    run.run_phases();
-  } catch (const InstabilityError& e) {
-    const std::string why = run.checkpoints.diagnosis(e.what());
-    write_stopped_summary(opt.out_dir, "pullout", s.resolved, "unstable", why,
-                          run.checkpoints.last(), opt.threads);
-    throw InstabilityError(why);
-  }
-  run.progress.finish();
+  run_lab_phases(run, "pullout", s.resolved, opt);
   const World<2>& w = run.w;
   const Pull& u = run.pull;
   write_states(opt.out_dir + "/states/grains_final.csv", opt.out_dir + "/states/sheet_final.csv", w,

@@ -22,6 +22,7 @@
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
 #include "lab/lab_box.hpp"
+#include "lab/lab_phases.hpp"
 #include "lab/soil_parameters.hpp"
 #include "measure/measurements.hpp"
 #include "scene/random_cloud.hpp"
@@ -546,20 +547,7 @@ struct Lab {
 template <int D>
 nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
   Lab<D> lab(s, opt);
-  lab.build();
-  if (opt.resume)
-    lab.resume();
-  else
-    lab.start();
-  try {
-    lab.run_phases();
-  } catch (const InstabilityError& e) {
-    const std::string why = lab.checkpoints.diagnosis(e.what());
-    write_stopped_summary(opt.out_dir, "triaxial", s.resolved, "unstable", why,
-                          lab.checkpoints.last(), opt.threads);
-    throw InstabilityError(why);
-  }
-  lab.progress.finish();
+  run_lab_phases(lab, "triaxial", s.resolved, opt);
   nlohmann::json results;
   results["preparation"] = lab.prep;
   results["tests"] = lab.tests;

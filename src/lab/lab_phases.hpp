@@ -1,0 +1,34 @@
+// The course shared by the lab runners (triaxial, pull-out), which are phase machines:
+// build from the scenario, start afresh or resume from the newest checkpoint, run the
+// phases. An instability leaves an "unstable" summary naming the last checkpoint.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/error.hpp"
+#include "io/run_output.hpp"
+
+namespace geodem {
+
+// Runner: build(), start(), resume(), run_phases(), progress, checkpoints (RunCheckpoints).
+template <class Runner>
+void run_lab_phases(Runner& r, const std::string& kind, const nlohmann::json& resolved,
+                    const RunOptions& opt) {
+  r.build();
+  if (opt.resume)
+    r.resume();
+  else
+    r.start();
+  try {
+    r.run_phases();
+  } catch (const InstabilityError& e) {
+    const std::string why = r.checkpoints.diagnosis(e.what());
+    write_stopped_summary(opt.out_dir, kind, resolved, "unstable", why, r.checkpoints.last(),
+                          opt.threads);
+    throw InstabilityError(why);
+  }
+  r.progress.finish();
+}
+
+}  // namespace geodem
