@@ -48,12 +48,12 @@ Checkpoint RunCheckpoints::resume(const std::string& scenario_file,
 }
 
 const std::string& RunCheckpoints::write(std::uint64_t step, double time, std::string runner,
-                                         std::string world, double elapsed_s) {
+                                         std::string world) {
   Checkpoint c{kind_, dimension_, step, time, resolved_.dump(), std::move(runner), std::move(world),
                ""};
   last_ = write_checkpoint(out_dir_, c, spec_.keep);
   last_step_ = step;
-  last_wall_ = elapsed_s;
+  last_wall_ = elapsed();
   return last_;
 }
 

@@ -4,6 +4,7 @@
 // (io/checkpoint.hpp has the file format).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -31,28 +32,38 @@ class RunCheckpoints {
   // after it are deleted. Problems are InputErrors naming `scenario_file`.
   Checkpoint resume(const std::string& scenario_file, const std::vector<std::string>& may_change);
 
+  // Wall-clock seconds of the whole run: since this object was made, plus those before the
+  // checkpoint resumed from (resume_clock). Runners save it in their state.
+  double elapsed() const {
+    return before_ + std::chrono::duration<double>(Clock::now() - start_).count();
+  }
+  // On resuming: the run's wall time up to its checkpoint; the periodic count restarts there.
+  void resume_clock(double before_s) {
+    before_ = last_wall_ = before_s;
+    start_ = Clock::now();
+  }
+
   // A periodic checkpoint is due after this step. `step` counts the steps of the whole run
   // (it names and orders the files, so it must grow: a lab test's world restarts its own
   // count with each confining stress).
-  bool due(std::uint64_t step, double elapsed_s) const {
+  bool due(std::uint64_t step) const {
     return (spec_.every_steps > 0 && step % spec_.every_steps == 0) ||
-           (spec_.every_seconds > 0.0 && elapsed_s - last_wall_ >= spec_.every_seconds);
+           (spec_.every_seconds > 0.0 && elapsed() - last_wall_ >= spec_.every_seconds);
   }
 
   // Writes a checkpoint of the runner's state and the world's; returns its path.
-  const std::string& write(std::uint64_t step, double time, std::string runner, std::string world,
-                           double elapsed_s);
+  const std::string& write(std::uint64_t step, double time, std::string runner, std::string world);
 
   // For run loops after a whole step: writes a checkpoint when one is due or a signal has
   // come, then stops on the signal (throws Interrupted naming the checkpoint).
   // save(StateWriter& runner, StateWriter& world) fills the two parts.
   template <class Save>
-  void after_step(std::uint64_t step, double time, double elapsed_s, Save&& save) {
+  void after_step(std::uint64_t step, double time, Save&& save) {
     const int signal = interrupt_signal();
-    if (signal || due(step, elapsed_s)) {
+    if (signal || due(step)) {
       StateWriter runner, world;
       save(runner, world);
-      write(step, time, std::move(runner.bytes()), std::move(world.bytes()), elapsed_s);
+      write(step, time, std::move(runner.bytes()), std::move(world.bytes()));
     }
     if (signal) throw Interrupted{signal, last_};
   }
@@ -64,13 +75,12 @@ class RunCheckpoints {
                                std::to_string(last_step_) + ")";
   }
 
-  // Restarts the wall-clock period (a resumed run counts from its saved elapsed time).
-  void set_wall_origin(double elapsed_s) { last_wall_ = elapsed_s; }
   const std::string& last() const { return last_; }
   std::uint64_t last_step() const { return last_step_; }
   const CheckpointSpec& spec() const { return spec_; }
 
  private:
+  using Clock = std::chrono::steady_clock;
   std::string kind_;
   int dimension_;
   const nlohmann::json& resolved_;
@@ -78,7 +88,9 @@ class RunCheckpoints {
   CheckpointSpec spec_;
   std::string last_;
   std::uint64_t last_step_ = 0;
-  double last_wall_ = 0.0;
+  double last_wall_ = 0.0;  // elapsed() at the last checkpoint
+  double before_ = 0.0;
+  Clock::time_point start_ = Clock::now();
 };
 
 // A JSON value in a state archive, as its text (doubles keep all their digits).

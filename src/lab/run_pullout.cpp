@@ -10,7 +10,6 @@
 #include "lab/run_pullout.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -103,7 +102,6 @@ struct Pull {
 };
 
 struct Pullout {
-  using Clock = std::chrono::steady_clock;
   const PulloutSettings& s;
   const RunOptions& opt;
   World<2> w;
@@ -118,7 +116,6 @@ struct Pullout {
   VtkSeries<2> vtk;
   RunCheckpoints checkpoints;
   std::shared_ptr<SurfacePressure<2>> surcharge;
-  Clock::time_point t0 = Clock::now();
   std::vector<double> moved;  // scratch of soil_displacement()
 
   // The run's own state, saved in checkpoints (visit_state).
@@ -129,7 +126,6 @@ struct Pullout {
   std::uint64_t foundation = 0;  // grains of the foundation (the lowest ids)
   double node_mass_factor = 1.0;
   std::uint64_t total_steps = 0;
-  double wall_before = 0.0;  // wall time before the checkpoint resumed from
   nlohmann::json prep = nlohmann::json::object();
   Pull pull;
 
@@ -141,9 +137,7 @@ struct Pullout {
         vtk(options.out_dir),
         checkpoints("pullout", 2, settings.resolved, options.out_dir, settings.checkpoint) {}
 
-  double elapsed() const {
-    return wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
-  }
+  double elapsed() const { return checkpoints.elapsed(); }
 
   template <class Archive>
   void visit_state(Archive& a) {
@@ -159,15 +153,14 @@ struct Pullout {
 
   // After a whole step: a checkpoint when due, and the stop on a signal.
   void after_step() {
-    checkpoints.after_step(total_steps, w.time, elapsed(),
-                           [&](StateWriter& runner, StateWriter& world) {
-                             visit_state(runner);
-                             runner(elapsed());
-                             for (const HistoryCsv* f : {&prep_csv, &history, &profiles})
-                               runner(static_cast<std::uint64_t>(f->rows()));
-                             vtk.save(runner);
-                             save_world_state(world, w);
-                           });
+    checkpoints.after_step(total_steps, w.time, [&](StateWriter& runner, StateWriter& world) {
+      visit_state(runner);
+      runner(elapsed());
+      for (const HistoryCsv* f : {&prep_csv, &history, &profiles})
+        runner(static_cast<std::uint64_t>(f->rows()));
+      vtk.save(runner);
+      save_world_state(world, w);
+    });
   }
 
   void build() {
@@ -254,6 +247,7 @@ struct Pullout {
     StateReader in(c.runner.data(), c.runner.size());
     visit_state(in);
     std::uint64_t rows[3] = {0, 0, 0};
+    double wall_before = 0.0;
     in(wall_before), in(rows[0]), in(rows[1]), in(rows[2]);
     vtk.restore(in);
     if (phase > Phase::kFoundation) lay_sheet();
@@ -265,8 +259,7 @@ struct Pullout {
       history.resume_rows(opt.out_dir + "/history.csv", history_columns(), rows[1]);
       profiles.resume_rows(opt.out_dir + "/tension_profiles.csv", profile_columns(), rows[2]);
     }
-    checkpoints.set_wall_origin(wall_before);
-    t0 = Clock::now();
+    checkpoints.resume_clock(wall_before);
   }
 
   // Sets the soil's contact friction; its rolling friction follows in proportion (none

@@ -1,7 +1,6 @@
 #include "lab/run_triaxial.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -73,7 +72,6 @@ struct Shear {
 template <int D>
 struct Lab {
   using Vec = typename Dim<D>::Vec;
-  using Clock = std::chrono::steady_clock;
   static constexpr int kAxial = D - 1;
   const TriaxialSettings& s;
   const RunOptions& opt;
@@ -85,7 +83,6 @@ struct Lab {
   VtkSeries<D> vtk;
   RunCheckpoints checkpoints;
   std::vector<std::shared_ptr<StressServo<D>>> servos;
-  Clock::time_point t0 = Clock::now();
 
   // The run's own state, saved in checkpoints (visit_state).
   Phase phase = Phase::kCompaction;
@@ -93,7 +90,6 @@ struct Lab {
   double phi = 0.0;                // grain friction of the friction reduction (deg)
   std::uint8_t interval_open = 0;  // a friction-reduction interval is under way
   std::uint64_t total_steps = 0;
-  double wall_before = 0.0;  // wall time before the checkpoint resumed from
   nlohmann::json prep = nlohmann::json::object(), tests = nlohmann::json::array();
   std::vector<double> s1_peaks, s3_peaks;
   std::uint64_t test = 0;  // index of the confining stress under test
@@ -106,9 +102,7 @@ struct Lab {
         vtk(options.out_dir),
         checkpoints("triaxial", D, settings.resolved, options.out_dir, settings.checkpoint) {}
 
-  double elapsed() const {
-    return wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
-  }
+  double elapsed() const { return checkpoints.elapsed(); }
   double porosity() const { return 1.0 - solid_volume(w) / box.volume(w); }
   double grain_friction_deg() const { return std::atan(w.pair_law(0, 0).mu) / kDeg; }
   // Sets the grain-grain friction (entry (0, 0) of the pair table). Rolling and twisting
@@ -134,22 +128,21 @@ struct Lab {
   // After a whole step: a checkpoint when due, and the stop on a signal. Checkpoints are
   // numbered by the run's step count: the world's restarts with each test's sample.
   void after_step() {
-    checkpoints.after_step(total_steps, w.time, elapsed(),
-                           [&](StateWriter& runner, StateWriter& world) {
-                             visit_state(runner);
-                             runner(elapsed());
-                             runner(static_cast<std::uint64_t>(prep_csv.rows()));
-                             runner(static_cast<std::uint64_t>(history.rows()));
-                             vtk.save(runner);
-                             const bool tests_begun = phase >= Phase::kConsolidation;
-                             runner(static_cast<std::uint8_t>(tests_begun));
-                             if (tests_begun) {
-                               StateWriter sample;
-                               save_world_state(sample, prepared);
-                               runner(sample.bytes());
-                             }
-                             save_world_state(world, w);
-                           });
+    checkpoints.after_step(total_steps, w.time, [&](StateWriter& runner, StateWriter& world) {
+      visit_state(runner);
+      runner(elapsed());
+      runner(static_cast<std::uint64_t>(prep_csv.rows()));
+      runner(static_cast<std::uint64_t>(history.rows()));
+      vtk.save(runner);
+      const bool tests_begun = phase >= Phase::kConsolidation;
+      runner(static_cast<std::uint8_t>(tests_begun));
+      if (tests_begun) {
+        StateWriter sample;
+        save_world_state(sample, prepared);
+        runner(sample.bytes());
+      }
+      save_world_state(world, w);
+    });
   }
 
   // Steps with measurement every `every` steps; stops when `done()` holds on a
@@ -267,6 +260,7 @@ struct Lab {
     visit_state(in);
     std::uint64_t prep_rows = 0, history_rows = 0;
     std::uint8_t tests_begun = 0;
+    double wall_before = 0.0;
     in(wall_before), in(prep_rows), in(history_rows);
     vtk.restore(in);
     in(tests_begun);
@@ -283,8 +277,7 @@ struct Lab {
     prep_csv.resume_rows(opt.out_dir + "/preparation.csv", prep_columns(), prep_rows);
     if (tests_begun)
       history.resume_rows(opt.out_dir + "/history.csv", history_columns(bonds()), history_rows);
-    checkpoints.set_wall_origin(wall_before);
-    t0 = Clock::now();
+    checkpoints.resume_clock(wall_before);
   }
 
   // Holds at the compaction stress with a small unbalanced force (rows of `code`).

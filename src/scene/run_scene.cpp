@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -41,7 +40,6 @@ Box<D> grains_box(const World<D>& w) {
 
 template <int D>
 nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
-  using Clock = std::chrono::steady_clock;
   World<D> w;
   build_world<D>(s, w);
   w.threads = opt.threads;
@@ -49,7 +47,6 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
 
   // The runner's own state in a checkpoint, beside the world's.
   std::uint64_t bonds_created = 0;
-  double wall_before = 0.0;   // wall time of the run before the checkpoint resumed from
   std::uint8_t finished = 0;  // the final outputs are written
   bool at_rest = false;
   std::string stop_reason = "end of duration";
@@ -98,7 +95,9 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   VtkSeries<D> vtk(opt.out_dir);
   if (opt.resume) {
     StateReader in(resumed.runner.data(), resumed.runner.size());
+    double wall_before = 0.0;  // wall time of the run before the checkpoint
     in(bonds_created), in(wall_before), in(finished), in(stop_reason);
+    checkpoints.resume_clock(wall_before);
     vtk.restore(in);
     // A finished run goes on if its duration or step count was raised, unless it stopped
     // at rest.
@@ -108,18 +107,13 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     history.open(opt.out_dir + "/history.csv", cols);
   }
 
-  const auto t0 = Clock::now();
-  auto elapsed = [&] {
-    return wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
-  };
-  checkpoints.set_wall_origin(elapsed());
+  auto elapsed = [&checkpoints] { return checkpoints.elapsed(); };
   auto checkpoint = [&] {
     StateWriter runner, world;
     runner(bonds_created), runner(elapsed()), runner(finished), runner(stop_reason);
     vtk.save(runner);
     save_world_state(world, w);
-    checkpoints.write(w.step, w.time, std::move(runner.bytes()), std::move(world.bytes()),
-                      elapsed());
+    checkpoints.write(w.step, w.time, std::move(runner.bytes()), std::move(world.bytes()));
   };
   auto record = [&]() {
     const double wall_now = elapsed();
@@ -195,7 +189,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
         status = "interrupted";
         break;
       }
-      if (checkpoints.due(w.step, elapsed())) checkpoint();
+      if (checkpoints.due(w.step)) checkpoint();
     }
     if (status == "completed") check_finite(w);
   } catch (const InstabilityError& e) {
