@@ -57,7 +57,7 @@ struct Grid {
 template <int D>
 void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch, bool have_old,
               const std::vector<std::uint32_t>& order) {
-  using Vec = typename Dim<D>::Vec;
+  using Spring = TangentSpring<D>;
   const std::size_t n = order.size();
   world.particles.permute(order);
   sort_clumps_by_members(world);
@@ -66,7 +66,8 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
   inv.resize(n);
   for (std::size_t k = 0; k < n; ++k) inv[order[k]] = static_cast<std::uint32_t>(k);
   // Grain-grain rows: each pair goes to the row of its new lower index; the spring
-  // is the force on the higher-index grain, so it changes sign when the roles swap.
+  // is the force on the higher-index grain, so it is seen from the other side when the
+  // roles swap.
   auto& start = scratch.start;
   start.assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
@@ -84,7 +85,7 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
       const std::uint32_t a = inv[i], b = inv[old.other[k]];
       const std::uint32_t row = std::min(a, b), slot = fill[row]++;
       scratch.other[slot] = std::max(a, b);
-      scratch.spring[slot] = a < b ? old.spring[k] : Vec(-old.spring[k]);
+      scratch.spring[slot] = a < b ? old.spring[k] : spring_from_other_body<D>(old.spring[k]);
       if (extras) {
         auto e = old.extra[k];
         // The moment on the new body 2 is the old one reversed, roll + twist n with the
@@ -103,9 +104,9 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
       }
   // Grain-wall and grain-spar rows keep their entries; only the rows move.
   auto move_rows = [&](const std::vector<std::uint32_t>& o_start,
-                       const std::vector<std::uint32_t>& o_idx, const std::vector<Vec>& o_spring,
+                       const std::vector<std::uint32_t>& o_idx, const std::vector<Spring>& o_spring,
                        std::vector<std::uint32_t>& s_start, std::vector<std::uint32_t>& s_idx,
-                       std::vector<Vec>& s_spring, const std::vector<ContactExtra<D>>* o_extra,
+                       std::vector<Spring>& s_spring, const std::vector<ContactExtra<D>>* o_extra,
                        std::vector<ContactExtra<D>>* s_extra) {
     if (o_start.size() != n + 1) return;
     s_start.assign(n + 1, 0);
@@ -392,10 +393,10 @@ void build_neighbour_list(World<D>& world) {
     if (have_old) {
       const std::size_t ob = old.start[i], on = old.start[i + 1] - ob;
       merge_history(old.other.data() + ob, old.spring.data() + ob, on, L.other.data() + nb,
-                    L.spring.data() + nb, nn, Vec::Zero().eval(), drop_nothing);
+                    L.spring.data() + nb, nn, unloaded_spring<D>(), drop_nothing);
       const std::size_t owb = old.wall_start[i], own = old.wall_start[i + 1] - owb;
       merge_history(old.wall.data() + owb, old.wall_spring.data() + owb, own, L.wall.data() + wb,
-                    L.wall_spring.data() + wb, wn, Vec::Zero().eval(), drop_nothing);
+                    L.wall_spring.data() + wb, wn, unloaded_spring<D>(), drop_nothing);
       if (extras && old_extras) {
         merge_history(old.other.data() + ob, old.extra.data() + ob, on, L.other.data() + nb,
                       L.extra.data() + nb, nn, no_extra, drop_extra);
@@ -403,19 +404,19 @@ void build_neighbour_list(World<D>& world) {
                       L.wall_extra.data() + wb, wn, no_extra, drop_nothing);
       }
     } else {
-      for (std::size_t k = 0; k < nn; ++k) L.spring[nb + k] = Vec::Zero();
-      for (std::size_t k = 0; k < wn; ++k) L.wall_spring[wb + k] = Vec::Zero();
+      for (std::size_t k = 0; k < nn; ++k) L.spring[nb + k] = unloaded_spring<D>();
+      for (std::size_t k = 0; k < wn; ++k) L.wall_spring[wb + k] = unloaded_spring<D>();
     }
   }
   world.broken_bonds += dropped_bonds;
   if (!L.spar_start.empty()) {
-    L.spar_spring.assign(L.spar.size(), Vec::Zero());
+    L.spar_spring.assign(L.spar.size(), unloaded_spring<D>());
     if (have_old && old.spar_start.size() == n + 1) {
       for (std::size_t i = 0; i < n; ++i) {
         const std::size_t sb = L.spar_start[i], sn = L.spar_start[i + 1] - sb;
         const std::size_t ob = old.spar_start[i], on = old.spar_start[i + 1] - ob;
         merge_history(old.spar.data() + ob, old.spar_spring.data() + ob, on, L.spar.data() + sb,
-                      L.spar_spring.data() + sb, sn, Vec::Zero().eval(), drop_nothing);
+                      L.spar_spring.data() + sb, sn, unloaded_spring<D>(), drop_nothing);
       }
     }
   }

@@ -76,7 +76,7 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
   Rot* __restrict torque = P.torque.data();
   const std::uint32_t* __restrict start = L.start.data();
   const std::uint32_t* __restrict other = L.other.data();
-  Vec* __restrict spring = L.spring.data();
+  TangentSpring<D>* __restrict spring = L.spring.data();
   ContactExtra<D>* __restrict extra = L.extra.data();
   const PairLaw* pair_laws = world.pair_laws.data();
   const double overlap_limit = world.overlap_limit;
@@ -100,7 +100,7 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
       if constexpr (Extras) bonded = extra[k].bonded;
       if (dist2 >= rs * rs && !bonded) {
         // Apart: the history ends (written only when there is one, to spare stores).
-        if (spring[k].squaredNorm() != 0.0) spring[k] = Vec::Zero();
+        if (spring_norm2<D>(spring[k]) != 0.0) spring[k] = unloaded_spring<D>();
         if constexpr (Extras) {
           if (Dim<D>::rot_norm2(extra[k].roll) != 0.0 || extra[k].twist != 0.0)
             extra[k] = ContactExtra<D>{};
@@ -203,7 +203,7 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
         nrm = -wall.normal;
       } else {
         if (!wall_closest(wall, xi, q)) {
-          L.wall_spring[k] = Vec::Zero();
+          L.wall_spring[k] = unloaded_spring<D>();
           if constexpr (Extras) L.wall_extra[k] = ContactExtra<D>{};
           continue;
         }
@@ -214,7 +214,7 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
       }
       const double delta = ri - gap;
       if (delta <= 0.0) {
-        L.wall_spring[k] = Vec::Zero();
+        L.wall_spring[k] = unloaded_spring<D>();
         if constexpr (Extras) L.wall_extra[k] = ContactExtra<D>{};
         continue;
       }

@@ -73,35 +73,67 @@ inline double tangential_stiffness(const PairLaw& p, double r1, double r2, doubl
   return 8.0 * p.gstar * std::sqrt(rstar * std::max(delta, 0.0));
 }
 
-// Updates the tangential spring (incremental, rotated with the contact plane) and
+// Tangential velocity of body 2 against body 1 in the spring's form: the vector vrel - (vrel.n) n
+// in 3D, its component along t = (-n_y, n_x) in 2D.
+template <int D>
+[[gnu::always_inline]] inline TangentSpring<D> tangential_velocity(const typename Dim<D>::Vec& vrel,
+                                                                   const typename Dim<D>::Vec& n,
+                                                                   double vn) {
+  if constexpr (D == 2) {
+    return n.x() * vrel.y() - n.y() * vrel.x();
+  } else {
+    return vrel - vn * n;
+  }
+}
+
+// The spring's force as a vector (the 2D value times t).
+template <int D>
+[[gnu::always_inline]] inline typename Dim<D>::Vec tangential_force(const TangentSpring<D>& ft,
+                                                                    const typename Dim<D>::Vec& n) {
+  if constexpr (D == 2) {
+    return typename Dim<D>::Vec(-ft * n.y(), ft * n.x());
+  } else {
+    return ft;
+  }
+}
+
+// Scales a tangential force down to Coulomb's limit when it exceeds it; true if it did.
+template <int D>
+[[gnu::always_inline]] inline bool limit_to(TangentSpring<D>& ft, double limit) {
+  if constexpr (D == 2) {
+    if (std::abs(ft) <= limit) return false;
+    ft = std::copysign(limit, ft);
+  } else {
+    const double ft2 = ft.squaredNorm();
+    if (ft2 <= limit * limit) return false;
+    ft *= limit / std::sqrt(ft2);
+  }
+  return true;
+}
+
+// Updates the tangential spring (incremental, turned with the contact plane) and
 // applies Coulomb's limit; returns the total force on body 2.
 template <int D>
 [[gnu::always_inline]] inline typename Dim<D>::Vec contact_force(
     const PairLaw& p, double r1, double r2, double inv_msum, const typename Dim<D>::Vec& n,
-    double delta, const typename Dim<D>::Vec& vrel, double dt, typename Dim<D>::Vec& spring,
+    double delta, const typename Dim<D>::Vec& vrel, double dt, TangentSpring<D>& spring,
     double& fn_out) {
-  using Vec = typename Dim<D>::Vec;
   const double vn = vrel.dot(n);
   const NormalResult nr = normal_force(p, r1, r2, inv_msum, delta, vn);
-  keep_in_tangent_plane(spring, n);
-  const Vec vt = vrel - vn * n;
+  if constexpr (D == 3) keep_in_tangent_plane(spring, n);
+  const TangentSpring<D> vt = tangential_velocity<D>(vrel, n, vn);
   spring -= (nr.kt * dt) * vt;
   const double limit = p.mu * std::max(nr.fn, 0.0);
   fn_out = nr.fn;
   if (!p.tangential_damping) {
-    const double ft2 = spring.squaredNorm();
-    if (ft2 > limit * limit) spring *= limit / std::sqrt(ft2);
-    return nr.fn * n + spring;
+    limit_to<D>(spring, limit);
+    return nr.fn * n + tangential_force<D>(spring, n);
   }
   // Tangential dashpot with the normal coefficient (LIGGGHTS' default for Hooke):
   // when the total exceeds Coulomb's limit, the spring takes the limited total.
-  Vec ft = spring - nr.cn * vt;
-  const double ft2 = ft.squaredNorm();
-  if (ft2 > limit * limit) {
-    ft *= limit / std::sqrt(ft2);
-    spring = ft;
-  }
-  return nr.fn * n + ft;
+  TangentSpring<D> ft = spring - nr.cn * vt;
+  if (limit_to<D>(ft, limit)) spring = ft;
+  return nr.fn * n + tangential_force<D>(ft, n);
 }
 
 // A bonded contact (linear law): the normal spring also pulls (delta < 0 allowed) and
@@ -113,7 +145,7 @@ template <int D>
 inline typename Dim<D>::Vec bonded_contact_force(const PairLaw& p, double r1, double r2,
                                                  double inv_msum, const typename Dim<D>::Vec& n,
                                                  double delta, const typename Dim<D>::Vec& vrel,
-                                                 double dt, typename Dim<D>::Vec& spring,
+                                                 double dt, TangentSpring<D>& spring,
                                                  double& fn_out, bool& broken) {
   using Vec = typename Dim<D>::Vec;
   const double vn = vrel.dot(n);
@@ -122,23 +154,19 @@ inline typename Dim<D>::Vec bonded_contact_force(const PairLaw& p, double r1, do
       (p.beta > 0.0 && inv_msum > 0.0) ? 2.0 * p.beta * std::sqrt(kn / inv_msum) : 0.0;
   const double fe = kn * delta;  // elastic part: what the bond's strengths are checked against
   const double fn = fe - cn * vn;
-  keep_in_tangent_plane(spring, n);
-  spring -= (kt * dt) * (vrel - vn * n);
+  if constexpr (D == 3) keep_in_tangent_plane(spring, n);
+  spring -= (kt * dt) * tangential_velocity<D>(vrel, n, vn);
   const double scale = p.bond_scale(r1, r2);
   const double shear_limit = p.bond_shear * scale + p.mu * std::max(fe, 0.0);
-  broken = fe < -p.bond_tension * scale || spring.squaredNorm() > shear_limit * shear_limit;
+  broken = fe < -p.bond_tension * scale || spring_norm2<D>(spring) > shear_limit * shear_limit;
   if (broken && delta <= 0.0) {
-    spring = Vec::Zero();
+    spring = unloaded_spring<D>();
     fn_out = 0.0;
     return Vec::Zero();
   }
   fn_out = fn;
-  if (broken) {
-    const double limit = p.mu * std::max(fn, 0.0);
-    const double ft2 = spring.squaredNorm();
-    if (ft2 > limit * limit) spring *= limit / std::sqrt(ft2);
-  }
-  return fn * n + spring;
+  if (broken) limit_to<D>(spring, p.mu * std::max(fn, 0.0));
+  return fn * n + tangential_force<D>(spring, n);
 }
 
 // Rolling (and, in 3D, twisting) resistance: elastic-plastic moment springs driven by

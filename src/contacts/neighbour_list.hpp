@@ -7,11 +7,49 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "core/dim.hpp"
 
 namespace geodem {
+
+// Tangential spring of a contact: the friction force it exerts on body 2 (see contact_law.hpp).
+// In 3D a vector in the tangent plane, turned with the plane every step. In 2D the tangent
+// plane is the line of t = (-n_y, n_x): the spring is its signed component along t. That value
+// turns with the normal by construction (no projection, no renormalisation) and takes half the
+// memory of a 2D vector. Seen from the other body both n and t reverse, so the 2D value is the
+// same from either side while the 3D vector changes sign.
+template <int D>
+using TangentSpring = std::conditional_t<D == 2, double, typename Dim<D>::Vec>;
+
+template <int D>
+TangentSpring<D> unloaded_spring() {
+  if constexpr (D == 2) {
+    return 0.0;
+  } else {
+    return Dim<D>::Vec::Zero();
+  }
+}
+
+template <int D>
+double spring_norm2(const TangentSpring<D>& s) {
+  if constexpr (D == 2) {
+    return s * s;
+  } else {
+    return s.squaredNorm();
+  }
+}
+
+// The spring of the same contact with the bodies' roles swapped.
+template <int D>
+TangentSpring<D> spring_from_other_body(const TangentSpring<D>& s) {
+  if constexpr (D == 2) {
+    return s;
+  } else {
+    return -s;
+  }
+}
 
 // Contact state beyond the tangential spring, kept only when some law needs it.
 template <int D>
@@ -23,22 +61,22 @@ struct ContactExtra {
 
 template <int D>
 struct NeighbourList {
-  using Vec = typename Dim<D>::Vec;
+  using Spring = TangentSpring<D>;
   // Grain-grain pairs: row i is [start[i], start[i+1]) in `other` and `spring`.
   std::vector<std::uint32_t> start;
   std::vector<std::uint32_t> other;
-  std::vector<Vec> spring;
+  std::vector<Spring> spring;
   // Grain-wall pairs, same layout.
   std::vector<std::uint32_t> wall_start;
   std::vector<std::uint32_t> wall;
-  std::vector<Vec> wall_spring;
+  std::vector<Spring> wall_spring;
   // Parallel to `spring` / `wall_spring` when the world has contact extras, else empty.
   std::vector<ContactExtra<D>> extra;
   std::vector<ContactExtra<D>> wall_extra;
   // Grain-spar element pairs (structures/), same layout; rows sorted by element.
   std::vector<std::uint32_t> spar_start;
   std::vector<std::uint32_t> spar;
-  std::vector<Vec> spar_spring;
+  std::vector<Spring> spar_spring;
 
   double skin = 0.0;  // extra distance listed beyond touching (m)
   std::uint64_t builds = 0;
@@ -52,10 +90,12 @@ struct NeighbourList {
     spar_start.swap(o.spar_start), spar.swap(o.spar), spar_spring.swap(o.spar_spring);
   }
   std::size_t bytes() const {
-    return start.capacity() * 4 + other.capacity() * 4 + spring.capacity() * sizeof(Vec) +
-           wall_start.capacity() * 4 + wall.capacity() * 4 + wall_spring.capacity() * sizeof(Vec) +
+    return start.capacity() * 4 + other.capacity() * 4 + spring.capacity() * sizeof(Spring) +
+           wall_start.capacity() * 4 + wall.capacity() * 4 +
+           wall_spring.capacity() * sizeof(Spring) +
            (extra.capacity() + wall_extra.capacity()) * sizeof(ContactExtra<D>) +
-           spar_start.capacity() * 4 + spar.capacity() * 4 + spar_spring.capacity() * sizeof(Vec);
+           spar_start.capacity() * 4 + spar.capacity() * 4 +
+           spar_spring.capacity() * sizeof(Spring);
   }
 };
 

@@ -16,21 +16,20 @@ namespace {
 // a distinct contact (concave bend) and keeps it.
 template <int D>
 void hand_over_springs(World<D>& world, std::size_t i, std::uint32_t b, std::uint32_t e) {
-  using Vec = typename Dim<D>::Vec;
   const auto& S = world.spars;
   auto& L = world.nlist;
   for (std::uint32_t k = b; k < e; ++k) {
-    if (L.spar_spring[k].squaredNorm() == 0.0) continue;
+    if (spring_norm2<D>(L.spar_spring[k]) == 0.0) continue;
     const std::size_t el = L.spar[k];
     const SparPoint<D> p = spar_point(S, el, world.particles.pos[i]);
     if (p.region == SparRegion::kOwned) continue;
     const std::int32_t to = p.region == SparRegion::kToNext ? S.next[el] : S.prev[el];
     for (std::uint32_t m = b; m < e; ++m)
       if (static_cast<std::int32_t>(L.spar[m]) == to) {
-        if (L.spar_spring[m].squaredNorm() == 0.0) L.spar_spring[m] = L.spar_spring[k];
+        if (spring_norm2<D>(L.spar_spring[m]) == 0.0) L.spar_spring[m] = L.spar_spring[k];
         break;
       }
-    L.spar_spring[k] = Vec::Zero();
+    L.spar_spring[k] = unloaded_spring<D>();
   }
 }
 
@@ -59,7 +58,7 @@ void compute_spar_contacts(World<D>& world) {
       const double dist = d.norm();
       const double delta = ri + S.half_thickness[el] - dist;
       if (p.region != SparRegion::kOwned || delta <= 0.0 || dist <= 0.0) {
-        L.spar_spring[k] = Vec::Zero();
+        L.spar_spring[k] = unloaded_spring<D>();
         continue;
       }
       const Vec nrm = d / dist;  // from the grain to the element

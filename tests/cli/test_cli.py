@@ -565,7 +565,7 @@ normal_cohesion = 5e4
 shear_cohesion = 5e4
 [compaction]
 confining_stress = 1e5
-target_porosity = 0.25
+target_porosity = 0.235  # below what compaction at full friction reaches: friction reduction runs
 [shear]
 strain_rate = 0.05
 max_axial_strain = 0.01
