@@ -1,11 +1,17 @@
 // Servo-controlled walls: the two walls normal to an axis move so that the stress on
 // them reaches a target. The error is turned into the wall displacement that would
 // cancel it if the contact stiffness stayed the same, e = (sigma - target) x area /
-// (the wall's contact stiffness) (yade's TriaxialStressController); each step the wall
-// moves by gain x e + integral_gain x (sum of past e), a proportional-integral law: the
-// integral term supplies the steady wall velocity a dilating or contracting sample
+// (the walls' mean contact stiffness) (yade's TriaxialStressController); each step the
+// walls move by gain x e + integral_gain x (sum of past e), a proportional-integral law:
+// the integral term supplies the steady wall velocity a dilating or contracting sample
 // needs, which a proportional law alone only gets from a steady stress error. The
 // velocity is capped at max_strain_rate x the box size.
+//
+// The two walls always move by the same amount in opposite directions, so the box's
+// centre stays where it is. Walls driven each by its own stiffness and its own integral
+// sum end with sums that differ by a constant, a steady translation of the whole sample;
+// a drifting sample defeats local damping (it acts on the sign of each grain's absolute
+// velocity), and the unbalanced force then never falls to its tolerance.
 #pragma once
 
 #include <algorithm>
@@ -38,29 +44,31 @@ class StressServo : public Controller<D> {
     const double sigma = box_.stress(w, axis_);
     const double area = box_.area(w, axis_);
     const double vmax = max_rate_ * box_.size(w)[axis_];
-    for (int side = 0; side < 2; ++side) {
-      auto& wall = w.walls[side == 0 ? box_.lo[axis_] : box_.hi[axis_]];
-      // Outward speed: positive when the stress is above the target.
-      double v;
-      if (wall.stiffness > 0.0) {
-        const double e = (sigma - target_) * area / wall.stiffness;
-        // Anti-windup: the sum only grows while the wall is not at its speed limit.
-        const double trial = (gain_ * e + integral_gain_ * (sum_[side] + e)) / w.dt;
-        if (std::abs(trial) < vmax) sum_[side] += e;
-        v = (gain_ * e + integral_gain_ * sum_[side]) / w.dt;
-      } else {
-        v = sigma < target_ ? -vmax : 0.0;  // no contact yet: close in
-      }
-      v = std::clamp(v, -vmax, vmax);
-      wall.velocity = -v * wall.normal;
+    auto& lo = w.walls[box_.lo[axis_]];
+    auto& hi = w.walls[box_.hi[axis_]];
+    // A move of u by both walls changes the mean of their stresses by the mean stiffness
+    // times u, over the area.
+    const double stiffness = 0.5 * (lo.stiffness + hi.stiffness);
+    double v;  // outward speed of each wall: positive when the stress is above the target
+    if (stiffness > 0.0) {
+      const double e = (sigma - target_) * area / stiffness;
+      // Anti-windup: the sum only grows while the walls are not at their speed limit.
+      const double trial = (gain_ * e + integral_gain_ * (sum_ + e)) / w.dt;
+      if (std::abs(trial) < vmax) sum_ += e;
+      v = (gain_ * e + integral_gain_ * sum_) / w.dt;
+    } else {
+      v = sigma < target_ ? -vmax : 0.0;  // no contact yet: close in
     }
+    v = std::clamp(v, -vmax, vmax);
+    lo.velocity = -v * lo.normal;
+    hi.velocity = -v * hi.normal;
   }
 
  private:
   LabBox<D> box_;
   int axis_;
   double target_, gain_, integral_gain_, max_rate_;
-  double sum_[2] = {0.0, 0.0};  // accumulated displacement errors of the lo and hi walls
+  double sum_ = 0.0;  // accumulated displacement errors (m)
 };
 
 }  // namespace geodem
