@@ -803,7 +803,13 @@ def plot_calibrate(out, summary, h=None):
 STUDY_KINDS = {"series", "rate_study", "calibrate"}
 
 
+def plot_interface(out, summary, h):
+    from geodem_plot_interface import plot_interface_shear
+    return plot_interface_shear(out, summary, h, save)
+
+
 PLOTTERS = {"scene": plot_scene, "triaxial": plot_triaxial, "pullout": plot_pullout,
+            "interface_shear": plot_interface,
             "series": plot_series, "rate_study": plot_rate_study, "calibrate": plot_calibrate}
 
 

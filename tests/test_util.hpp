@@ -16,6 +16,7 @@
 #include <random>
 #include <string>
 #include <type_traits>
+#include <unistd.h>
 
 #include "core/dim.hpp"
 #include "core/step.hpp"
@@ -40,6 +41,17 @@ struct DimNames {
 
 template <int D>
 using Vec = typename Dim<D>::Vec;
+
+// A folder of this test's own under the test temp dir: the process id and the test's
+// full name keep test processes that CTest runs side by side out of each other's files.
+inline std::string unique_temp_dir(const std::string& tag) {
+  std::string name = tag + "_" + std::to_string(::getpid());
+  if (const auto* info = ::testing::UnitTest::GetInstance()->current_test_info())
+    name += std::string("_") + info->test_suite_name() + "_" + info->name();
+  for (char& c : name)
+    if (c == '/') c = '_';
+  return ::testing::TempDir() + "/geodem_" + name;
+}
 
 // A vector from its x, y (and z in 3D) components.
 template <int D>

@@ -15,6 +15,7 @@
 #include "io/interrupt.hpp"
 #include "io/run_output.hpp"
 #include "io/scenario_file.hpp"
+#include "lab/run_interface_shear.hpp"
 #include "lab/run_pullout.hpp"
 #include "lab/run_triaxial.hpp"
 #include "scene/build_scene.hpp"
@@ -192,6 +193,24 @@ int run_main(int argc, char** argv) {
         std::fprintf(stderr, "done: T_max %.4g N/m (analytic slippage %.4g N/m); outputs in %s\n",
                      summary["results"]["T_max"].get<double>(),
                      summary["results"]["T_analytic_slip"].get<double>(), out_dir.c_str());
+      return kOk;
+    }
+    if (l.kind == "interface_shear") {
+      const geodem::InterfaceShearSettings p = geodem::read_interface_shear(l.root, scenario);
+      if (*check) {
+        std::printf("%s: ok (kind = \"interface_shear\", %zu normal stresses)\n",
+                    scenario.c_str(), p.normal_stress.size());
+        return kOk;
+      }
+      const auto summary = geodem::run_interface_shear(p, opt);
+      if (p.plots) geodem::make_plots(out_dir, quiet);
+      if (!quiet)
+        std::fprintf(stderr,
+                     "done: interface friction %.4g deg (peak), %.4g deg (residual); outputs in "
+                     "%s\n",
+                     summary["results"]["interface_friction_peak_deg"].get<double>(),
+                     summary["results"]["interface_friction_residual_deg"].get<double>(),
+                     out_dir.c_str());
       return kOk;
     }
     const geodem::SceneSettings s = geodem::read_scene(l.root, scenario);

@@ -58,7 +58,9 @@ void give_default(toml::table& into, const std::string& key, const toml::node& v
 
 void expand_material_reference(toml::table& root, const std::string& kind,
                                const std::string& scenario_file) {
-  const std::string table_name = kind == "pullout" ? "soil" : "material";
+  // The 2D kinds over a deposited soil name their material [soil].
+  const bool soil_kind = kind == "pullout" || kind == "interface_shear";
+  const std::string table_name = soil_kind ? "soil" : "material";
   toml::table* mat = root[table_name].as_table();
   if (!mat || !(mat->contains("preset") || mat->contains("file"))) return;
   const std::string where = cat(table_name, ".");
@@ -97,7 +99,7 @@ void expand_material_reference(toml::table& root, const std::string& kind,
   const std::string f = path.string();
   // The scenario's dimension must be the material's.
   const long long dim = file["dimension"].value_or(0LL);
-  const long long want = kind == "pullout" ? 2 : root["dimension"].value_or(3LL);
+  const long long want = soil_kind ? 2 : root["dimension"].value_or(3LL);
   if (dim != want)
     throw InputError(
         scenario_file, ref_line, cat(where, key),
@@ -118,7 +120,7 @@ void expand_material_reference(toml::table& root, const std::string& kind,
   }
   const toml::table* grain = file["grain"].as_table();
   if (!grain) return;
-  toml::table* shape_table = kind == "pullout" ? mat : root["sample"].as_table();
+  toml::table* shape_table = soil_kind ? mat : root["sample"].as_table();
   if (shape_table && !shape_table->contains("grains")) {
     if (const toml::node* shape = grain->get("shape")) give_default(*shape_table, "grain", *shape);
     if (const toml::node* fuzz = grain->get("radius_fuzz"))

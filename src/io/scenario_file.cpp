@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "io/material_file.hpp"
 #include "io/toml_reader.hpp"
+#include "lab/interface_shear_settings.hpp"
 #include "lab/pullout_settings.hpp"
 #include "lab/triaxial_settings.hpp"
 #include "scene/scene_settings.hpp"
@@ -38,8 +39,8 @@ LoadedScenario finish_loading(toml::table root, const std::vector<std::string>& 
 }  // namespace
 
 const std::vector<std::string>& scenario_kinds() {
-  static const std::vector<std::string> kinds = {"scene",  "triaxial",   "pullout",
-                                                 "series", "rate_study", "calibrate"};
+  static const std::vector<std::string> kinds = {
+      "scene", "triaxial", "pullout", "interface_shear", "series", "rate_study", "calibrate"};
   return kinds;
 }
 
@@ -58,6 +59,8 @@ void check_scenario_settings(const LoadedScenario& l, const std::string& file) {
     (void)read_triaxial(l.root, file);
   } else if (l.kind == "pullout") {
     (void)read_pullout(l.root, file);
+  } else if (l.kind == "interface_shear") {
+    (void)read_interface_shear(l.root, file);
   } else if (l.kind == "series") {
     (void)read_series(l.root, file);
   } else if (l.kind == "rate_study") {

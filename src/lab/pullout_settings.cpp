@@ -23,30 +23,7 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
     b->finish();
   }
 
-  auto soil = r.table("soil");
-  if (!soil) r.fail("soil", "missing [soil] table (density, young, friction_deg, radius)");
-  s.soil = read_material(*soil, "soil");
-  if (s.soil.law != LawKind::kLinear || s.soil.kn > 0.0)
-    soil->fail("law", "the pull-out test uses the linear law with a contact modulus ('young')");
-  s.radius = soil->positive("radius", s.radius);
-  s.radius_fuzz = soil->in_range("radius_fuzz", s.radius_fuzz, 0.0, 0.9);
-  s.grains = read_grain_spec(*soil, 2, read_templates(r, 2));
-  s.layer_thickness = soil->positive("layer_thickness", s.layer_thickness);
-  s.settle_unbalanced = soil->in_range("settle_unbalanced", s.settle_unbalanced, 1e-5, 0.5);
-  s.deposit_damping = soil->in_range("deposit_damping", s.deposit_damping, 0.0, 0.99);
-  if (soil->has("deposit_friction_deg"))
-    s.deposit_friction_deg = soil->in_range("deposit_friction_deg", 0.0, 0.0, 89.0);
-  const bool cohesive = s.soil.normal_cohesion > 0.0 || s.soil.shear_cohesion > 0.0;
-  s.bonds = soil->boolean("bonds", cohesive);
-  if (s.bonds && !cohesive)
-    soil->fail("bonds", "bonds need soil.normal_cohesion or soil.shear_cohesion > 0");
-  s.bond_gap_tolerance = soil->in_range("bond_gap_tolerance", 0.0, 0.0, 0.5);
-  soil->finish();
-  s.wall = s.soil;
-  s.wall.name = "walls";
-  s.wall.friction = 0.0;  // smooth, inert boundaries
-  s.wall.rolling_friction = s.wall.twisting_friction = 0.0;
-  s.wall.normal_cohesion = s.wall.shear_cohesion = 0.0;
+  read_deposited_soil(r, s);
 
   auto a = r.table("anchor");
   if (!a) r.fail("anchor", "missing [anchor] table (shape, runout_length, cover)");
@@ -71,19 +48,7 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
             "the anchor must end inside the box (runout_length + trench_width < box.length)");
   a->finish();
 
-  if (auto sh = r.table("sheet")) {
-    s.stiffness_J = sh->positive("stiffness_J", s.stiffness_J);
-    s.element_length = sh->positive("element_length", 2.0 * s.radius);
-    s.interface_friction_deg = sh->in_range("interface_friction_deg", 34.0, 0.0, 89.0);
-    s.mass_per_area = sh->positive("mass_per_area", s.mass_per_area);
-    s.thickness = sh->positive("thickness", 0.2 * s.radius);
-    s.bending = sh->non_negative("bending_stiffness", 0.0);
-    s.mass_scaling = sh->boolean("mass_scaling", true);
-    sh->finish();
-  } else {
-    s.element_length = 2.0 * s.radius;
-    s.thickness = 0.2 * s.radius;
-  }
+  read_sheet(r, s.radius, s);
   if (auto q = r.table("surcharge")) {
     s.surcharge = q->non_negative("pressure", 0.0);
     q->finish();

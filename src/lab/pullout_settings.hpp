@@ -8,10 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "clumps/grain_mix.hpp"
 #include "io/checkpoint.hpp"
 #include "io/toml_reader.hpp"
-#include "materials/material.hpp"
+#include "lab/deposit_settings.hpp"
 
 namespace geodem {
 
@@ -27,35 +26,15 @@ struct AnchorGeometry {
   std::string front = "wall";
 };
 
-struct PulloutSettings {
+struct PulloutSettings : DepositedSoil, SheetSettings {
   std::string file;
   std::uint64_t seed = 1;
   // [box]
   double box_length = 1.2;  // m
   double foundation = 0.2;  // soil thickness below the run-out level (m)
-  // [soil]
-  Material soil, wall;
-  GrainSpec grains;
-  double radius = 0.01;  // mean grain scale (m): the radius of round grains
-  double radius_fuzz = 0.25;
-  double layer_thickness = 0.1;     // deposition layers (m)
-  double settle_unbalanced = 0.01;  // a layer is at rest below this unbalanced force
-  bool bonds = false;               // cohesive soil: bond the contacts after filling
-  double bond_gap_tolerance = 0.0;
-  double deposit_damping = 0.4;
-  // Contact friction while the soil is deposited (< 0: the soil's own): lower friction
-  // packs it denser, as the friction reduction of the triaxial test does.
-  double deposit_friction_deg = -1.0;
+  // [soil] and [sheet]: DepositedSoil, SheetSettings
   // [anchor]
   AnchorGeometry anchor;
-  // [sheet]
-  double stiffness_J = 1e5;     // N/m
-  double element_length = 0.0;  // 0: the mean grain diameter
-  double interface_friction_deg = 34.0;
-  double mass_per_area = 0.5;  // kg/m^2
-  double thickness = 0.002;    // m (contact radius of the elements is half of it)
-  double bending = 0.0;        // N m/rad per m width at each node
-  bool mass_scaling = true;    // raise node masses so the sheet does not set the time step
   // [surcharge]
   double surcharge = 0.0;  // Pa on the surface
   // [pull]

@@ -188,7 +188,7 @@ TEST(StateArchive, RoundTripAndTruncation) {
 class CheckpointFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) / "geodem_checkpoint_test";
+    dir_ = test::unique_temp_dir("checkpoint");
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -60,7 +60,7 @@ TYPED_TEST(Triaxial, PreparationAndServoHoldTheirTargets) {
   s.plots = false;
   RunOptions opt;
   opt.quiet = true;
-  opt.out_dir = ::testing::TempDir() + "/triaxial" + std::to_string(D);
+  opt.out_dir = test::unique_temp_dir("triaxial" + std::to_string(D));
   const auto summary = run_triaxial(s, opt);
   const auto& prep = summary["results"]["preparation"];
   report(std::to_string(D) + "D prepared porosity - target",

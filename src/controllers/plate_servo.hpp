@@ -1,0 +1,54 @@
+// A loading plate held at a normal stress (the normal load of a shear box): the plane
+// wall moves along its normal so that the grains' pressure on it reaches the target.
+// Proportional-integral law, as the lab box servo (stress_servo.hpp): the error becomes
+// the displacement that would cancel it at the current contact stiffness; each step the
+// plate moves by gain x error + integral_gain x (sum of past errors). The integral term
+// supplies the steady velocity of a sample that dilates or contracts while it is sheared,
+// which a proportional law only gets from a steady stress error. The speed is capped.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "core/world.hpp"
+#include "io/state_archive.hpp"
+
+namespace geodem {
+
+template <int D>
+class PlateServo : public Controller<D> {
+ public:
+  PlateServo(std::size_t wall, double target, double max_speed, double gain = 0.3,
+             double integral_gain = 0.02)
+      : wall_(wall), target_(target), vmax_(max_speed), gain_(gain), integral_gain_(integral_gain) {}
+
+  double target() const { return target_; }
+  void set_target(double t) { target_ = t; }
+  // Pressure the grains exert on the plate (Pa).
+  double pressure(const World<D>& w) const { return w.walls[wall_].normal_stress(); }
+  void save_state(StateWriter& out) const override { out(target_), out(vmax_), out(sum_); }
+  void load_state(StateReader& in) override { in(target_), in(vmax_), in(sum_); }
+
+  void apply(World<D>& w) override {
+    auto& wall = w.walls[wall_];
+    double v;  // speed along the plate's normal, towards the grains
+    if (wall.stiffness > 0.0) {
+      const double e = (target_ - wall.normal_stress()) * wall.area / wall.stiffness;
+      // Anti-windup: the sum only grows while the plate is below its speed cap.
+      const double trial = (gain_ * e + integral_gain_ * (sum_ + e)) / w.dt;
+      if (std::abs(trial) < vmax_) sum_ += e;
+      v = (gain_ * e + integral_gain_ * sum_) / w.dt;
+    } else {
+      v = vmax_;  // not touching yet: come down
+    }
+    wall.velocity = std::clamp(v, -vmax_, vmax_) * wall.normal;
+  }
+
+ private:
+  std::size_t wall_;
+  double target_, vmax_, gain_, integral_gain_;
+  double sum_ = 0.0;  // accumulated displacement errors (m)
+};
+
+}  // namespace geodem

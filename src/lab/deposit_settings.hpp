@@ -1,0 +1,44 @@
+// Settings shared by the 2D lab kinds that deposit a soil by gravity and couple it to a
+// geosynthetic sheet (pull-out, interface shear): the [soil] and [sheet] tables, read
+// by one function each so that both kinds accept the same keys with the same checks.
+#pragma once
+
+#include "clumps/grain_mix.hpp"
+#include "io/toml_reader.hpp"
+#include "materials/material.hpp"
+
+namespace geodem {
+
+struct DepositedSoil {
+  Material soil, wall;
+  GrainSpec grains;
+  double radius = 0.01;  // mean grain scale (m): the radius of round grains
+  double radius_fuzz = 0.25;
+  double layer_thickness = 0.1;     // deposition layers (m)
+  double settle_unbalanced = 0.01;  // a layer is at rest below this unbalanced force
+  bool bonds = false;               // cohesive soil: bond the contacts after filling
+  double bond_gap_tolerance = 0.0;
+  double deposit_damping = 0.4;
+  // Contact friction while the soil is deposited (< 0: the soil's own): lower friction
+  // packs it denser, as the friction reduction of the triaxial test does.
+  double deposit_friction_deg = -1.0;
+};
+
+struct SheetSettings {
+  double stiffness_J = 1e5;     // N/m
+  double element_length = 0.0;  // 0: the mean grain diameter
+  double interface_friction_deg = 34.0;
+  double mass_per_area = 0.5;  // kg/m^2
+  double thickness = 0.002;    // m (contact radius of the elements is half of it)
+  double bending = 0.0;        // N m/rad per m width at each node
+  bool mass_scaling = true;    // raise node masses so the sheet does not set the time step
+};
+
+// Reads [soil] (required) and the [[templates]] it may name; the smooth wall material
+// is derived from the soil's.
+void read_deposited_soil(TableReader& root, DepositedSoil& s);
+
+// Reads [sheet] (optional); lengths default from the grain radius.
+void read_sheet(TableReader& root, double radius, SheetSettings& s);
+
+}  // namespace geodem

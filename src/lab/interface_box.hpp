@@ -1,0 +1,103 @@
+// The interface shear box (docs/lab_tests.md, "Interface shear"): soil in a rigid box
+// whose floor is a geosynthetic sheet on a rigid base, loaded by a plate held at a
+// normal stress, while the sheet slides under the soil at a constant rate. These parts
+// build the box in a world and read the interface stresses from the sheet's nodes; the
+// runner (run_interface_shear.cpp) and the verification tests use the same ones.
+//
+// The sheet is a spar chain whose nodes are all driven: it keeps its shape (a rigid
+// base), and the force the grains exert on it is the sum of its nodes' contact forces,
+// which the contact stage leaves in SparChains::force (no element is stretched, so no
+// element force is mixed in). Over the box length the soil rests on the sheet; the
+// sheet reaches past both side walls far enough that the soil never loses it.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/world.hpp"
+
+namespace geodem {
+
+struct InterfaceBox {
+  double length = 0.3;          // soil box length (m): the sheared length of the interface
+  double thickness = 0.002;     // sheet thickness (m): its upper face is at y = thickness
+  double element_length = 0.01; // sheet element length (m)
+  double travel = 0.05;         // how far the sheet will slide (m)
+  double margin = 0.02;         // sheet length past each wall beyond the travel (m)
+  double mass_per_area = 0.5;   // kg/m^2 (the base drives the nodes: only for the record)
+  double stiffness_J = 1e6;     // N/m (the base keeps the sheet unstretched)
+  std::uint16_t wall_material = 1, sheet_material = 2;
+};
+
+enum : std::size_t { kShearFloor = 0, kShearLeft = 1, kShearRight = 2 };
+
+// Walls (a floor under the sheet, the two side walls x = 0 and x = length) and the sheet,
+// its nodes driven and still. Returns nothing: walls are kShearFloor.. and the sheet is
+// chain 0.
+inline void build_interface_box(World<2>& w, const InterfaceBox& b) {
+  using Vec = Dim<2>::Vec;
+  auto plane = [&](const char* name, Vec point, Vec normal, double area) {
+    Wall<2> wall;
+    wall.name = name;
+    wall.point = point;
+    wall.normal = normal;
+    wall.material = b.wall_material;
+    wall.area = area;
+    w.walls.push_back(wall);
+  };
+  // The floor only catches a grain that would ever pass through the sheet.
+  plane("floor", Vec(0.0, 0.0), Vec(0.0, 1.0), b.length);
+  plane("left", Vec(0.0, 0.0), Vec(1.0, 0.0), 0.0);
+  plane("right", Vec(b.length, 0.0), Vec(-1.0, 0.0), 0.0);
+  const double x0 = -(b.travel + b.margin), x1 = b.length + b.margin;
+  const auto n = static_cast<std::size_t>(std::ceil((x1 - x0) / b.element_length));
+  std::vector<Vec> nodes;
+  for (std::size_t i = 0; i <= n; ++i)
+    nodes.emplace_back(x0 + (x1 - x0) * static_cast<double>(i) / static_cast<double>(n),
+                       0.5 * b.thickness);
+  w.spars.add_chain("sheet", nodes, b.stiffness_J, b.mass_per_area, b.thickness, b.sheet_material);
+  for (auto& f : w.spars.flags) f = kNodeDriven;
+}
+
+// The loading plate, a plane facing down at height y; returns its wall index.
+inline std::size_t add_loading_plate(World<2>& w, const InterfaceBox& b, double y) {
+  Wall<2> plate;
+  plate.name = "plate";
+  plate.point = Dim<2>::Vec(0.0, y);
+  plate.normal = Dim<2>::Vec(0.0, -1.0);
+  plate.material = b.wall_material;
+  plate.area = b.length;
+  w.walls.push_back(plate);
+  return w.walls.size() - 1;
+}
+
+// Sets the sheet sliding along x at `velocity` (m/s; 0 stops it).
+inline void drive_sheet(World<2>& w, double velocity) {
+  for (auto& v : w.spars.vel) v = Dim<2>::Vec(velocity, 0.0);
+}
+
+// Stresses the grains exert on the sheet this step, over the box length: shear stress
+// against the sheet's motion (+x) and normal stress, compression positive (Pa).
+struct InterfaceStresses {
+  double shear = 0.0, normal = 0.0;
+};
+inline InterfaceStresses interface_stresses(const World<2>& w, double length) {
+  double fx = 0.0, fy = 0.0;
+  for (const auto& f : w.spars.force) fx += f.x(), fy += f.y();
+  return {-fx / length, -fy / length};
+}
+
+// Weight of the grains (N per metre): what the sheet carries beyond the plate's load.
+inline double grains_weight(const World<2>& w) {
+  const auto& P = w.particles;
+  double m = 0.0;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (!P.member(i) && P.inv_mass[i] > 0.0) m += 1.0 / P.inv_mass[i];
+  for (double im : w.clumps.inv_mass)
+    if (im > 0.0) m += 1.0 / im;
+  return m * w.gravity.norm();
+}
+
+}  // namespace geodem

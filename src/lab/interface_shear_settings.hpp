@@ -1,0 +1,42 @@
+// Settings of a `kind = "interface_shear"` scenario (docs/lab_tests.md, "Interface
+// shear"): a 2D box of soil deposited by gravity on a geosynthetic sheet that lies on a
+// rigid base, consolidated under a plate at each normal stress, then sheared by sliding
+// the sheet under the box at a constant rate.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/toml_reader.hpp"
+#include "lab/deposit_settings.hpp"
+
+namespace geodem {
+
+struct InterfaceShearSettings : DepositedSoil, SheetSettings {
+  std::string file;
+  std::uint64_t seed = 1;
+  // [box]
+  double box_length = 0.3;  // m: the sheared length of the interface
+  double box_height = 0.1;  // m: soil deposited to this height
+  // [shear]
+  std::vector<double> normal_stress = {25e3, 50e3, 100e3};  // Pa, one test each
+  double rate = 0.005;                                      // m/s of the sheet under the soil
+  double max_displacement = 0.03;                           // m
+  double damping = 0.2;                                     // local damping while shearing
+  double residual_from = 0.8;  // the residual state: displacements past this fraction
+  double consolidation_tolerance = 0.01;  // plate stress within this fraction of its target
+  int history_points = 200;               // rows of each test in history.csv
+  // [time]
+  double dt_safety = 0.8;
+  int dt_update_interval = 20;
+  std::uint64_t max_settle_steps = 400'000;
+  // [output]
+  bool vtk = true, plots = true;
+  nlohmann::json resolved;
+};
+
+InterfaceShearSettings read_interface_shear(const toml::table& root, const std::string& file);
+
+}  // namespace geodem

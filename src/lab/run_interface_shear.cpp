@@ -1,0 +1,324 @@
+// The interface shear test (docs/lab_tests.md, "Interface shear"):
+//   1. the soil is deposited by gravity in layers into a rigid box whose floor is the
+//      sheet on its rigid base, and trimmed to the box height;
+//   2. for each normal stress, from that deposit: the soil takes its own friction, a
+//      plate is brought down and held at the normal stress less the soil's own weight
+//      (so that the sheet carries the normal stress asked for), everything settles;
+//      cohesive soils are bonded and settle again;
+//   3. the sheet slides under the soil at a constant rate while the plate holds its
+//      load; the shear and normal stresses on the sheet and the plate's rise are
+//      recorded;
+//   4. each test's peak, residual, stiffness and dilation, and the Mohr-Coulomb
+//      envelope of the interface over the tests.
+#include "lab/run_interface_shear.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+
+#include "contacts/bonds.hpp"
+#include "controllers/plate_servo.hpp"
+#include "core/error.hpp"
+#include "core/random.hpp"
+#include "core/step.hpp"
+#include "io/output_files.hpp"
+#include "io/progress.hpp"
+#include "lab/interface_box.hpp"
+#include "lab/interface_parameters.hpp"
+#include "lab/soil_editing.hpp"
+#include "measure/measurements.hpp"
+
+namespace geodem {
+
+namespace {
+
+using Vec = Dim<2>::Vec;
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kGravity = 9.81;
+// Layer sizes, as the pull-out deposit: a dense 2D packing's porosity guess, and the
+// fraction of its height the bounding discs of a loose cloud fill.
+constexpr double kDensePorosity = 0.16, kLooseFill = 0.3;
+enum : std::uint16_t { kSoil = 0, kWalls = 1, kSheet = 2 };
+
+std::vector<std::string> history_columns() {
+  return {"test",         "normal_stress_target", "step",           "time",
+          "displacement", "shear_stress",         "normal_stress",  "stress_ratio",
+          "plate_stress", "dilation",             "kinetic_energy", "sheet_contacts"};
+}
+
+struct InterfaceShear {
+  const InterfaceShearSettings& s;
+  const RunOptions& opt;
+  InterfaceBox box;
+  World<2> w, deposit;
+  Random rng;
+  Progress progress;
+  VtkSeries<2> vtk;
+  HistoryCsv history;
+  std::vector<ResolvedKind<2>> kinds;
+  double mean_grain_area = 0.0, bound_ratio = 1.0;
+  std::uint64_t total_steps = 0;
+  std::size_t test = 0;  // index of the test in progress
+
+  InterfaceShear(const InterfaceShearSettings& settings, const RunOptions& options)
+      : s(settings), opt(options), rng(settings.seed), progress(options.quiet), vtk(options.out_dir) {}
+
+  double fraction(double within) const {
+    return (static_cast<double>(test) + within) / static_cast<double>(s.normal_stress.size() + 1);
+  }
+
+  void build() {
+    Material sheet = s.soil;
+    sheet.name = "sheet";
+    sheet.friction = std::tan(s.interface_friction_deg * kDeg);
+    sheet.rolling_friction = sheet.twisting_friction = 0.0;
+    sheet.normal_cohesion = sheet.shear_cohesion = 0.0;
+    w.materials = {s.soil, s.wall, sheet};
+    box.length = s.box_length;
+    box.thickness = s.thickness;
+    box.element_length = s.element_length;
+    box.travel = s.max_displacement;
+    box.margin = 4.0 * s.radius;
+    box.mass_per_area = s.mass_per_area;
+    box.stiffness_J = s.stiffness_J;
+    box.wall_material = kWalls;
+    box.sheet_material = kSheet;
+    build_interface_box(w, box);
+    w.resolve_pair_laws();
+    // Soil against sheet: the interface friction alone (no rolling resistance, no bond).
+    for (auto* law : {&w.pair_laws[kSoil * 3 + kSheet], &w.pair_laws[kSheet * 3 + kSoil]}) {
+      law->mu = std::tan(s.interface_friction_deg * kDeg);
+      law->roll_mu = law->twist_mu = 0.0;
+      law->bond_tension = law->bond_shear = 0.0;
+    }
+    w.update_contact_extras();
+    if (s.deposit_friction_deg >= 0.0) set_soil_friction(std::tan(s.deposit_friction_deg * kDeg));
+    w.gravity = Vec(0.0, -kGravity);
+    w.auto_dt = true;
+    w.dt_safety = s.dt_safety;
+    w.dt_update_interval = s.dt_update_interval;
+    w.sort_interval = 10;
+    w.threads = opt.threads;
+    w.local_damping = s.deposit_damping;
+    kinds = resolve_kinds<2>(s.grains);
+    double fsum = 0.0, bound_area = 0.0;
+    for (const auto& k : kinds) fsum += k.fraction;
+    for (const auto& k : kinds) {
+      const double scale2 =
+          k.size * k.size * (1.0 + s.radius_fuzz * s.radius_fuzz / 3.0) * s.radius * s.radius;
+      mean_grain_area += k.fraction / fsum * k.clump.volume * scale2;
+      bound_area += k.fraction / fsum * Dim<2>::volume(k.clump.bounding_radius) * scale2;
+    }
+    bound_ratio = bound_area / mean_grain_area;
+  }
+
+  // The soil's contact friction; its rolling friction follows in proportion.
+  void set_soil_friction(double mu) {
+    PairLaw& law = w.pair_laws[kSoil * 3 + kSoil];
+    const double ratio = s.soil.friction > 0.0 ? mu / s.soil.friction : 0.0;
+    law.mu = mu;
+    law.roll_mu = s.soil.rolling_friction * ratio;
+    law.twist_mu = s.soil.twisting_friction * ratio;
+  }
+
+  double top_of_grains() const {
+    double t = 0.0;
+    for (std::size_t i = 0; i < w.particles.size(); ++i)
+      t = std::max(t, w.particles.pos[i].y() + w.particles.radius[i]);
+    return t;
+  }
+
+  // Steps until the soil is at rest (and the plate at its load, when there is one).
+  void settle(const std::string& stage, const PlateServo<2>* plate) {
+    const std::uint64_t every = 200;
+    for (std::uint64_t k = 1;; ++k) {
+      w.measure_this_step = k % every == 0;
+      step(w);
+      ++total_steps;
+      if (!w.measure_this_step) continue;
+      const double unb = unbalanced_force_ratio(w);
+      double load_error = 0.0;
+      if (plate) load_error = std::abs(plate->pressure(w) / plate->target() - 1.0);
+      progress.update(stage, w.step, w.time, fraction(0.0),
+                      "unbalanced " + format_number(unb) +
+                          (plate ? ", plate load off by " + format_number(100.0 * load_error) + " %"
+                                 : std::string()));
+      if (k >= 5 * every && unb < s.settle_unbalanced && load_error < s.consolidation_tolerance)
+        return;
+      if (k >= s.max_settle_steps)
+        throw std::runtime_error(stage + ": the soil did not come to rest (unbalanced force " +
+                                 format_number(unb) + ", plate load off by " +
+                                 format_number(100.0 * load_error) + " % after " +
+                                 std::to_string(k) +
+                                 " steps); raise time.max_settle_steps or soil.settle_unbalanced");
+    }
+  }
+
+  // Layers dropped over the sheet until the soil reaches the box height; trimmed there.
+  void deposit_soil() {
+    const double base = box.thickness;
+    int layer = 0;
+    for (;;) {
+      const double from = w.particles.size() == 0 ? base : top_of_grains();
+      if (w.particles.size() > 0 && from >= s.box_height) break;
+      const double dense = std::min(s.layer_thickness, s.box_height - from + 2.0 * s.radius);
+      const auto count = static_cast<std::size_t>(
+          std::ceil((1.0 - kDensePorosity) * s.box_length * dense / mean_grain_area));
+      const double loose = dense * (1.0 - kDensePorosity) * bound_ratio / kLooseFill;
+      try {
+        add_random_grains<2>(w, kinds, Vec(0.0, from), Vec(s.box_length, from + loose), count,
+                             1.0 - kLooseFill, s.radius_fuzz, s.soil.density, kSoil, rng,
+                             Vec::Zero(), s.radius);
+      } catch (const std::runtime_error& e) {
+        throw InputError(s.file, 0, "soil.layer_thickness", e.what());
+      }
+      w.rebuild_needed = true;
+      settle("deposit layer " + std::to_string(++layer), nullptr);
+    }
+    const auto& P = w.particles;
+    std::vector<char> above(P.size(), 0);
+    for (std::size_t i = 0; i < P.size(); ++i)
+      above[i] = P.pos[i].y() + P.radius[i] > s.box_height ? 1 : 0;
+    remove_grains(w, above);
+    settle("deposit", nullptr);
+  }
+
+  nlohmann::json run_test(double sigma_n) {
+    w = deposit;
+    const std::size_t plate_wall = add_loading_plate(w, box, top_of_grains() + 0.5 * s.radius);
+    w.resolve_pair_laws();
+    for (auto* law : {&w.pair_laws[kSoil * 3 + kSheet], &w.pair_laws[kSheet * 3 + kSoil]}) {
+      law->mu = std::tan(s.interface_friction_deg * kDeg);
+      law->roll_mu = law->twist_mu = 0.0;
+      law->bond_tension = law->bond_shear = 0.0;
+    }
+    set_soil_friction(s.soil.friction);
+    w.update_contact_extras();
+    const double weight = grains_weight(w) / s.box_length;
+    if (sigma_n <= 2.0 * weight)
+      throw InputError(s.file, 0, "shear.normal_stress",
+                       "a normal stress of " + format_number(sigma_n) +
+                           " Pa is less than twice the soil's own weight on the sheet (" +
+                           format_number(weight) + " Pa): lower box.height or raise it");
+    const std::string name = "test " + std::to_string(test + 1) + " (" +
+                             format_number(sigma_n / 1e3) + " kPa)";
+    const double vmax = 0.05 * s.radius / w.dt;
+    auto servo = std::make_shared<PlateServo<2>>(plate_wall, sigma_n - weight, vmax);
+    w.controllers = {servo};
+    settle(name + ": consolidation", servo.get());
+    std::size_t bonds = 0;
+    if (s.bonds) {
+      bonds = create_bonds(w, s.bond_gap_tolerance);
+      settle(name + ": bonded", servo.get());
+    }
+    if (s.vtk) vtk.write(w);
+
+    // Shear: the sheet slides along +x under the soil.
+    w.local_damping = s.damping;
+    drive_sheet(w, s.rate);
+    const double x0 = w.spars.pos[0].x(), plate0 = w.walls[plate_wall].point.y();
+    const double d_record = s.max_displacement / s.history_points;
+    double next = d_record, u = 0.0, sum_t = 0.0, sum_n = 0.0, sum_p = 0.0;
+    std::uint64_t steps = 0;
+    const std::uint64_t start = w.step;
+    InterfaceCurve c;
+    double servo_error = 0.0;
+    while (u < s.max_displacement) {
+      const double u_next = w.spars.pos[0].x() + s.rate * w.dt - x0;
+      w.measure_this_step = u_next >= next || u_next >= s.max_displacement;
+      step(w);
+      ++total_steps;
+      u = w.spars.pos[0].x() - x0;
+      const InterfaceStresses st = interface_stresses(w, s.box_length);
+      sum_t += st.shear, sum_n += st.normal, sum_p += servo->pressure(w), ++steps;
+      if (u + 1e-15 < next && u < s.max_displacement) continue;
+      // A row holds the means since the previous one: the per-step values carry the
+      // grains' vibrations.
+      const double n = static_cast<double>(steps);
+      const double tau = sum_t / n, sig = sum_n / n, pl = sum_p / n;
+      const double rise = w.walls[plate_wall].point.y() - plate0;
+      history.row({static_cast<double>(test), sigma_n, static_cast<double>(w.step), w.time, u, tau,
+                   sig, sig > 0.0 ? tau / sig : 0.0, pl, rise, kinetic_energy(w),
+                   static_cast<double>(w.stats.spar_contacts)});
+      c.displacement.push_back(u), c.shear.push_back(tau), c.normal.push_back(sig);
+      c.dilation.push_back(rise);
+      servo_error = std::max(servo_error, std::abs(pl / servo->target() - 1.0));
+      sum_t = sum_n = sum_p = 0.0, steps = 0;
+      while (next <= u + 1e-15) next += d_record;
+      progress.update(name + ": shear", w.step, w.time, fraction(u / s.max_displacement),
+                      "tau/sigma " + format_number(sig > 0.0 ? tau / sig : 0.0));
+    }
+    if (s.vtk) vtk.write(w);
+    const InterfaceTest t = interface_test(c, s.residual_from);
+    return {{"normal_stress_target", sigma_n},
+            {"normal_stress", t.normal_stress},
+            {"peak_shear_stress", t.peak_shear},
+            {"displacement_at_peak", t.displacement_at_peak},
+            {"peak_stress_ratio", t.peak_ratio},
+            {"peak_friction_deg", std::atan(t.peak_ratio) / kDeg},
+            {"residual_shear_stress", t.residual_shear},
+            {"residual_stress_ratio", t.residual_ratio},
+            {"residual_friction_deg", std::atan(t.residual_ratio) / kDeg},
+            {"shear_stiffness", t.shear_stiffness},
+            {"dilation_max", t.dilation_max},
+            {"dilation_end", t.dilation_end},
+            {"dilation_angle_deg", t.dilation_angle_deg},
+            {"plate_load", sigma_n - weight},
+            {"soil_weight_stress", weight},
+            {"servo_error_max", servo_error},
+            {"bonds", bonds},
+            {"grains", w.particles.size()},
+            {"shear_steps", w.step - start}};
+  }
+};
+
+nlohmann::json envelope_json(const InterfaceEnvelope& e) {
+  return {{"friction_deg", e.friction_deg},
+          {"adhesion", e.adhesion},
+          {"r2", e.r2},
+          {"fitted", e.fitted}};
+}
+
+}  // namespace
+
+nlohmann::json run_interface_shear(const InterfaceShearSettings& s, const RunOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  InterfaceShear run(s, opt);
+  prepare_output_dir(opt.out_dir);
+  run.build();
+  run.deposit_soil();
+  run.deposit = run.w;
+  run.history.open(opt.out_dir + "/history.csv", history_columns());
+  nlohmann::json tests = nlohmann::json::array();
+  std::vector<double> sn, peak, residual;
+  for (run.test = 0; run.test < s.normal_stress.size(); ++run.test) {
+    tests.push_back(run.run_test(s.normal_stress[run.test]));
+    const auto& t = tests.back();
+    sn.push_back(t["normal_stress"].get<double>());
+    peak.push_back(t["peak_shear_stress"].get<double>());
+    residual.push_back(t["residual_shear_stress"].get<double>());
+  }
+  run.progress.finish();
+  const InterfaceEnvelope ep = fit_interface_envelope(sn, peak);
+  const InterfaceEnvelope er = fit_interface_envelope(sn, residual);
+  nlohmann::json results;
+  results["local_interface_friction_deg"] = s.interface_friction_deg;
+  results["interface_friction_peak_deg"] = ep.friction_deg;
+  results["interface_adhesion_peak"] = ep.adhesion;
+  results["interface_friction_residual_deg"] = er.friction_deg;
+  results["interface_adhesion_residual"] = er.adhesion;
+  results["peak_envelope"] = envelope_json(ep);
+  results["residual_envelope"] = envelope_json(er);
+  results["tests"] = tests;
+  results["deposit_grains"] = run.deposit.particles.size();
+  results["bodies"] = body_count(run.deposit);
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return write_run_summary(opt.out_dir, "interface_shear", "completed", s.resolved, results,
+                           timing_json(run.w, wall_s, run.total_steps, opt.threads));
+}
+
+}  // namespace geodem
