@@ -27,20 +27,31 @@ class PlateServo : public Controller<D> {
   void set_target(double t) { target_ = t; }
   // Pressure the grains exert on the plate (Pa).
   double pressure(const World<D>& w) const { return w.walls[wall_].normal_stress(); }
-  void save_state(StateWriter& out) const override { out(target_), out(vmax_), out(sum_); }
-  void load_state(StateReader& in) override { in(target_), in(vmax_), in(sum_); }
+  void save_state(StateWriter& out) const override {
+    out(target_), out(vmax_), out(sum_), out(stiffness_);
+  }
+  void load_state(StateReader& in) override { in(target_), in(vmax_), in(sum_), in(stiffness_); }
 
   void apply(World<D>& w) override {
     auto& wall = w.walls[wall_];
+    // A plate that just lost its contacts (it rebounded, or the soil below it dilated and
+    // then settled) comes back at the last contact stiffness it saw: at full speed it
+    // would hit the grains far too hard and bounce off again, a limit cycle.
+    // Its integral term is dropped then too: it holds the steady speed of a plate that
+    // follows the soil, which a plate out of contact no longer does.
+    if (wall.stiffness > 0.0)
+      stiffness_ = wall.stiffness;
+    else
+      sum_ = 0.0;
     double v;  // speed along the plate's normal, towards the grains
-    if (wall.stiffness > 0.0) {
-      const double e = (target_ - wall.normal_stress()) * wall.area / wall.stiffness;
+    if (stiffness_ > 0.0) {
+      const double e = (target_ - wall.normal_stress()) * wall.area / stiffness_;
       // Anti-windup: the sum only grows while the plate is below its speed cap.
       const double trial = (gain_ * e + integral_gain_ * (sum_ + e)) / w.dt;
       if (std::abs(trial) < vmax_) sum_ += e;
       v = (gain_ * e + integral_gain_ * sum_) / w.dt;
     } else {
-      v = vmax_;  // not touching yet: come down
+      v = vmax_;  // never touched yet: come down
     }
     wall.velocity = std::clamp(v, -vmax_, vmax_) * wall.normal;
   }
@@ -48,7 +59,8 @@ class PlateServo : public Controller<D> {
  private:
   std::size_t wall_;
   double target_, vmax_, gain_, integral_gain_;
-  double sum_ = 0.0;  // accumulated displacement errors (m)
+  double sum_ = 0.0;        // accumulated displacement errors (m)
+  double stiffness_ = 0.0;  // the plate's contact stiffness when it last touched (N/m)
 };
 
 }  // namespace geodem
