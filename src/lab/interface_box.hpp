@@ -1,14 +1,16 @@
-// The interface shear box (docs/lab_tests.md, "Interface shear"): soil in a rigid box
-// whose floor is a geosynthetic sheet on a rigid base, loaded by a plate held at a
-// normal stress, while the sheet slides under the soil at a constant rate. These parts
-// build the box in a world and read the interface stresses from the sheet's nodes; the
-// runner (run_interface_shear.cpp) and the verification tests use the same ones.
+// The interface shear box (docs/lab_tests.md, "Interface shear"): soil in a rigid box,
+// loaded by a plate held at a normal stress, over a geosynthetic sheet that slides at a
+// constant rate. These parts build the box in a world and read the interface stresses;
+// the runner (run_interface_shear.cpp) and the verification tests use the same ones.
 //
-// The sheet is a spar chain whose nodes are all driven: it keeps its shape (a rigid
-// base), and the force the grains exert on it is the sum of its nodes' contact forces,
-// which the contact stage leaves in SparChains::force (no element is stretched, so no
-// element force is mixed in). Over the box length the soil rests on the sheet; the
-// sheet reaches past both side walls far enough that the soil never loses it.
+// Two bases. "rigid": the sheet is the floor of the box, a spar chain whose nodes are
+// all driven: it keeps its shape, and the force the grains exert on it is the sum of its
+// nodes' contact forces, which the contact stage leaves in SparChains::force (no element
+// is stretched, so no element force is mixed in); it reaches past both side walls far
+// enough that the soil never loses it. "soil": the sheet lies between two layers of
+// soil and is pulled out through a side wall by its clamp, free to drape over the grains
+// and to stretch, as in a pull-out; the shear stress on each face is the clamp's
+// tension over twice the embedded length.
 #pragma once
 
 #include <cmath>
@@ -27,16 +29,16 @@ struct InterfaceBox {
   double travel = 0.05;         // how far the sheet will slide (m)
   double margin = 0.02;         // sheet length past each wall beyond the travel (m)
   double mass_per_area = 0.5;   // kg/m^2 (the base drives the nodes: only for the record)
-  double stiffness_J = 1e6;     // N/m (the base keeps the sheet unstretched)
+  double stiffness_J = 1e6;     // N/m (a rigid base keeps the sheet unstretched)
+  double bending = 0.0;         // N m/rad per m at each node (a sheet pulled through soil)
   std::uint16_t wall_material = 1, sheet_material = 2;
 };
 
 enum : std::size_t { kShearFloor = 0, kShearLeft = 1, kShearRight = 2 };
 
-// Walls (a floor under the sheet, the two side walls x = 0 and x = length) and the sheet,
-// its nodes driven and still. Returns nothing: walls are kShearFloor.. and the sheet is
-// chain 0.
-inline void build_interface_box(World<2>& w, const InterfaceBox& b) {
+// The walls: a floor and the two side walls x = 0 and x = length (kShearFloor...). Under
+// a rigid base the floor only catches a grain that would ever pass through the sheet.
+inline void add_interface_box_walls(World<2>& w, const InterfaceBox& b) {
   using Vec = Dim<2>::Vec;
   auto plane = [&](const char* name, Vec point, Vec normal, double area) {
     Wall<2> wall;
@@ -47,10 +49,15 @@ inline void build_interface_box(World<2>& w, const InterfaceBox& b) {
     wall.area = area;
     w.walls.push_back(wall);
   };
-  // The floor only catches a grain that would ever pass through the sheet.
   plane("floor", Vec(0.0, 0.0), Vec(0.0, 1.0), b.length);
   plane("left", Vec(0.0, 0.0), Vec(1.0, 0.0), 0.0);
   plane("right", Vec(b.length, 0.0), Vec(-1.0, 0.0), 0.0);
+}
+
+// A rigid base: the sheet (chain 0) at the bottom of the box, its nodes all driven and
+// still, reaching past both side walls.
+inline void add_rigid_base_sheet(World<2>& w, const InterfaceBox& b) {
+  using Vec = Dim<2>::Vec;
   const double x0 = -(b.travel + b.margin), x1 = b.length + b.margin;
   const auto n = static_cast<std::size_t>(std::ceil((x1 - x0) / b.element_length));
   std::vector<Vec> nodes;
@@ -59,6 +66,21 @@ inline void build_interface_box(World<2>& w, const InterfaceBox& b) {
                        0.5 * b.thickness);
   w.spars.add_chain("sheet", nodes, b.stiffness_J, b.mass_per_area, b.thickness, b.sheet_material);
   for (auto& f : w.spars.flags) f = kNodeDriven;
+}
+
+// A sheet pulled through the soil (base "soil"): its axis at height y, from its clamp
+// (node 0, driven, outside the box at x = -margin) through the side wall x = 0 to its free
+// end at x = end inside the box.
+inline void add_pulled_sheet(World<2>& w, const InterfaceBox& b, double y, double end) {
+  using Vec = Dim<2>::Vec;
+  const double x0 = -b.margin;
+  const auto n = static_cast<std::size_t>(std::ceil((end - x0) / b.element_length));
+  std::vector<Vec> nodes;
+  for (std::size_t i = 0; i <= n; ++i)
+    nodes.emplace_back(x0 + (end - x0) * static_cast<double>(i) / static_cast<double>(n), y);
+  w.spars.add_chain("sheet", nodes, b.stiffness_J, b.mass_per_area, b.thickness, b.sheet_material,
+                    b.bending);
+  w.spars.flags[0] = kNodeDriven;
 }
 
 // The loading plate, a plane facing down at height y; returns its wall index.

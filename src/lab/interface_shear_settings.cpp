@@ -14,9 +14,14 @@ InterfaceShearSettings read_interface_shear(const toml::table& root, const std::
   if (auto b = r.table("box")) {
     s.box_length = b->positive("length", s.box_length);
     s.box_height = b->positive("height", s.box_height);
+    s.base = b->choice("base", s.base, {"rigid", "soil"});
+    if (s.base == "soil") s.lower_height = b->positive("lower_height", s.box_height);
     b->finish();
   }
   read_deposited_soil(r, s);
+  if (s.base == "soil" && s.lower_height < 6.0 * s.radius)
+    r.fail("box", "the soil under the sheet must be at least 3 grains' diameters thick "
+                  "(box.lower_height >= 6 x soil.radius)");
   if (s.box_height < 6.0 * s.radius || s.box_length < 10.0 * s.radius)
     r.fail("box", "the box must hold at least 3 grains' diameters of soil (box.height >= 6 x "
                   "soil.radius) and 5 along the sheet (box.length >= 10 x soil.radius)");
@@ -29,8 +34,11 @@ InterfaceShearSettings read_interface_shear(const toml::table& root, const std::
     if (!(x > 0.0)) sh->fail("normal_stress", "expected normal stresses > 0 (Pa)");
   s.rate = sh->in_range("rate", s.rate, 1e-6, 10.0);
   s.max_displacement = sh->positive("max_displacement", s.max_displacement);
-  if (s.max_displacement > s.box_length)
-    sh->fail("max_displacement", "expected at most box.length of slip");
+  if (s.max_displacement > (s.base == "soil" ? 0.5 : 1.0) * s.box_length)
+    sh->fail("max_displacement", s.base == "soil"
+                                     ? "expected at most half box.length of pull (the sheet "
+                                       "must stay embedded)"
+                                     : "expected at most box.length of slip");
   s.damping = sh->in_range("damping", s.damping, 0.0, 0.99);
   s.residual_from = sh->in_range("residual_from", s.residual_from, 0.0, 0.99);
   s.consolidation_tolerance =

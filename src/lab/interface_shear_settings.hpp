@@ -1,7 +1,7 @@
 // Settings of a `kind = "interface_shear"` scenario (docs/lab_tests.md, "Interface
 // shear"): a 2D box of soil deposited by gravity on a geosynthetic sheet that lies on a
-// rigid base, consolidated under a plate at each normal stress, then sheared by sliding
-// the sheet under the box at a constant rate.
+// rigid base (or on a lower layer of soil), consolidated under a plate at each normal
+// stress, then sheared by moving the sheet at a constant rate.
 #pragma once
 
 #include <cstdint>
@@ -19,7 +19,12 @@ struct InterfaceShearSettings : DepositedSoil, SheetSettings {
   std::uint64_t seed = 1;
   // [box]
   double box_length = 0.3;  // m: the sheared length of the interface
-  double box_height = 0.1;  // m: soil deposited to this height
+  double box_height = 0.1;  // m: soil above the sheet
+  // What the sheet lies on: "rigid" (the floor of the box; the sheet slides under the
+  // soil) or "soil" (a lower layer of soil, lower_height thick; the sheet is pulled out
+  // between the two layers through the side wall, as in a pull-out box).
+  std::string base = "rigid";
+  double lower_height = 0.0;
   // [shear]
   std::vector<double> normal_stress = {25e3, 50e3, 100e3};  // Pa, one test each
   double rate = 0.005;                                      // m/s of the sheet under the soil

@@ -28,6 +28,7 @@
 #include "io/progress.hpp"
 #include "lab/interface_box.hpp"
 #include "lab/interface_parameters.hpp"
+#include "lab/sheet_inertia.hpp"
 #include "lab/soil_editing.hpp"
 #include "measure/measurements.hpp"
 
@@ -66,6 +67,10 @@ struct InterfaceShear {
   InterfaceShear(const InterfaceShearSettings& settings, const RunOptions& options)
       : s(settings), opt(options), rng(settings.seed), progress(options.quiet), vtk(options.out_dir) {}
 
+  bool soil_base() const { return s.base == "soil"; }
+  // Height of the sheet's axis; the soil above it loads it.
+  double sheet_axis() const { return (soil_base() ? s.lower_height : 0.0) + 0.5 * box.thickness; }
+
   double fraction(double within) const {
     return (static_cast<double>(test) + within) / static_cast<double>(s.normal_stress.size() + 1);
   }
@@ -84,9 +89,11 @@ struct InterfaceShear {
     box.margin = 4.0 * s.radius;
     box.mass_per_area = s.mass_per_area;
     box.stiffness_J = s.stiffness_J;
+    box.bending = s.bending;
     box.wall_material = kWalls;
     box.sheet_material = kSheet;
-    build_interface_box(w, box);
+    add_interface_box_walls(w, box);
+    if (!soil_base()) add_rigid_base_sheet(w, box);
     w.resolve_pair_laws();
     // Soil against sheet: the interface friction alone (no rolling resistance, no bond).
     for (auto* law : {&w.pair_laws[kSoil * 3 + kSheet], &w.pair_laws[kSheet * 3 + kSoil]}) {
@@ -157,14 +164,13 @@ struct InterfaceShear {
     }
   }
 
-  // Layers dropped over the sheet until the soil reaches the box height; trimmed there.
-  void deposit_soil() {
-    const double base = box.thickness;
+  // Layers dropped from `base` up until the soil reaches `height`; trimmed there.
+  void deposit_layers(double base, double height, const std::string& stage) {
     int layer = 0;
     for (;;) {
-      const double from = w.particles.size() == 0 ? base : top_of_grains();
-      if (w.particles.size() > 0 && from >= s.box_height) break;
-      const double dense = std::min(s.layer_thickness, s.box_height - from + 2.0 * s.radius);
+      const double from = std::max(base, w.particles.size() == 0 ? 0.0 : top_of_grains());
+      if (w.particles.size() > 0 && top_of_grains() >= height) break;
+      const double dense = std::min(s.layer_thickness, height - from + 2.0 * s.radius);
       const auto count = static_cast<std::size_t>(
           std::ceil((1.0 - kDensePorosity) * s.box_length * dense / mean_grain_area));
       const double loose = dense * (1.0 - kDensePorosity) * bound_ratio / kLooseFill;
@@ -176,14 +182,48 @@ struct InterfaceShear {
         throw InputError(s.file, 0, "soil.layer_thickness", e.what());
       }
       w.rebuild_needed = true;
-      settle("deposit layer " + std::to_string(++layer), nullptr);
+      settle(stage + " layer " + std::to_string(++layer), nullptr);
     }
     const auto& P = w.particles;
     std::vector<char> above(P.size(), 0);
     for (std::size_t i = 0; i < P.size(); ++i)
-      above[i] = P.pos[i].y() + P.radius[i] > s.box_height ? 1 : 0;
+      above[i] = P.pos[i].y() + P.radius[i] > height ? 1 : 0;
     remove_grains(w, above);
+  }
+
+  // The soil: on the rigid base; or a lower layer, held still while the sheet is laid on
+  // it and the upper layer deposited, then released.
+  void deposit_soil() {
+    if (!soil_base()) {
+      deposit_layers(box.thickness, box.thickness + s.box_height, "deposit");
+      settle("deposit", nullptr);
+      return;
+    }
+    deposit_layers(0.0, s.lower_height, "lower soil");
+    auto& P = w.particles;
+    for (std::size_t i = 0; i < P.size(); ++i) P.id[i] = static_cast<std::uint32_t>(i);
+    const std::size_t lower = P.size();
+    hold_grains(w, std::vector<char>(lower, 1), true);
+    add_pulled_sheet(w, box, sheet_axis(), s.box_length - 2.0 * s.radius);
+    if (s.mass_scaling) scale_sheet_inertia(w, s.soil.young, s.stiffness_J, s.element_length);
+    w.rebuild_needed = true;
+    deposit_layers(s.lower_height + box.thickness, s.lower_height + box.thickness + s.box_height,
+                   "upper soil");
+    std::vector<char> held(P.size(), 0);
+    for (std::size_t i = 0; i < P.size(); ++i) held[i] = P.id[i] < lower ? 1 : 0;
+    hold_grains(w, held, false);
     settle("deposit", nullptr);
+  }
+
+  // Weight of the soil above the sheet per metre of the box (Pa on the sheet).
+  double weight_on_sheet() const {
+    if (!soil_base()) return grains_weight(w) / s.box_length;
+    World<2> upper = w;
+    std::vector<char> below(w.particles.size(), 0);
+    for (std::size_t i = 0; i < below.size(); ++i)
+      below[i] = w.particles.pos[i].y() < sheet_axis() ? 1 : 0;
+    remove_grains(upper, below);
+    return grains_weight(upper) / s.box_length;
   }
 
   nlohmann::json run_test(double sigma_n) {
@@ -197,7 +237,7 @@ struct InterfaceShear {
     }
     set_soil_friction(s.soil.friction);
     w.update_contact_extras();
-    const double weight = grains_weight(w) / s.box_length;
+    const double weight = weight_on_sheet();
     if (sigma_n <= 2.0 * weight)
       throw InputError(s.file, 0, "shear.normal_stress",
                        "a normal stress of " + format_number(sigma_n) +
@@ -216,10 +256,15 @@ struct InterfaceShear {
     }
     if (s.vtk) vtk.write(w);
 
-    // Shear: the sheet slides along +x under the soil.
+    // Shear: the sheet slides along +x under the soil (rigid base), or is pulled out
+    // along -x by its clamp (soil base).
     w.local_damping = s.damping;
-    drive_sheet(w, s.rate);
-    const double x0 = w.spars.pos[0].x(), plate0 = w.walls[plate_wall].point.y();
+    auto& S = w.spars;
+    if (soil_base())
+      S.vel[0] = Vec(-s.rate, 0.0);
+    else
+      drive_sheet(w, s.rate);
+    const double x0 = S.pos[0].x(), plate0 = w.walls[plate_wall].point.y();
     const double d_record = s.max_displacement / s.history_points;
     double next = d_record, u = 0.0, sum_t = 0.0, sum_n = 0.0, sum_p = 0.0;
     std::uint64_t steps = 0;
@@ -227,13 +272,21 @@ struct InterfaceShear {
     InterfaceCurve c;
     double servo_error = 0.0;
     while (u < s.max_displacement) {
-      const double u_next = w.spars.pos[0].x() + s.rate * w.dt - x0;
+      const double u_next = std::abs(S.pos[0].x() - x0) + s.rate * w.dt;
       w.measure_this_step = u_next >= next || u_next >= s.max_displacement;
       step(w);
       ++total_steps;
-      u = w.spars.pos[0].x() - x0;
-      const InterfaceStresses st = interface_stresses(w, s.box_length);
-      sum_t += st.shear, sum_n += st.normal, sum_p += servo->pressure(w), ++steps;
+      u = std::abs(S.pos[0].x() - x0);
+      const double pressure = servo->pressure(w);
+      if (soil_base()) {
+        // Each face of the embedded length carries half the clamp's tension.
+        const double embedded = std::max(S.pos[S.nodes() - 1].x(), s.radius);
+        sum_t += S.tension[0] / (2.0 * embedded), sum_n += pressure + weight;
+      } else {
+        const InterfaceStresses st = interface_stresses(w, s.box_length);
+        sum_t += st.shear, sum_n += st.normal;
+      }
+      sum_p += pressure, ++steps;
       if (u + 1e-15 < next && u < s.max_displacement) continue;
       // A row holds the means since the previous one: the per-step values carry the
       // grains' vibrations.

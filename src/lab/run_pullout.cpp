@@ -23,13 +23,13 @@
 #include "core/random.hpp"
 #include "core/step.hpp"
 #include "core/world_state.hpp"
-#include "integrate/critical_timestep.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
 #include "lab/anchorage.hpp"
 #include "lab/lab_phases.hpp"
+#include "lab/sheet_inertia.hpp"
 #include "lab/soil_editing.hpp"
 #include "measure/measurements.hpp"
 
@@ -386,7 +386,8 @@ struct Pullout {
     prep["foundation_grains"] = P.size();
     for (std::size_t i = 0; i < P.size(); ++i) w.particles.id[i] = static_cast<std::uint32_t>(i);
     lay_sheet();
-    if (s.mass_scaling) scale_node_masses();
+    if (s.mass_scaling)
+      node_mass_factor = scale_sheet_inertia(w, s.soil.young, s.stiffness_J, s.element_length);
     w.rebuild_needed = true;
     foundation = P.size();
     hold_grains(w, std::vector<char>(foundation, 1), true);
@@ -439,26 +440,6 @@ struct Pullout {
       return;
     }
     begin_pull();
-  }
-
-  // Node masses raised so that the sheet's own critical step is no shorter than the
-  // grains' (a quasi-static pull does not feel the sheet's inertia; docs/lab_tests.md).
-  void scale_node_masses() {
-    auto& S = w.spars;
-    World<2> grains_only = w;
-    grains_only.spars = SparChains<2>{};
-    grains_only.rebuild_needed = true;
-    const double dt = critical_timestep(grains_only) / w.dt_safety;
-    const double m_over_k = 0.5 * dt * dt;        // dt^2 = 2 m / k
-    const double k_contact = 2.0 * s.soil.young;  // a grain on each face (2D: kn = E)
-    double factor = 1.0;
-    for (std::size_t i = 0; i < S.nodes(); ++i) {
-      const double k = 2.0 * s.stiffness_J / s.element_length + k_contact;
-      factor = std::max(factor, 1.1 * k * m_over_k / S.mass[i]);
-    }
-    // Inertia only: gravity still acts on the sheet's true mass.
-    for (std::size_t i = 0; i < S.nodes(); ++i) S.inertial_mass[i] = factor * S.mass[i];
-    node_mass_factor = factor;
   }
 
   // The plate on the cover, held at the surcharge pressure.

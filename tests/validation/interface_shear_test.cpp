@@ -36,7 +36,8 @@ SlidingRow slide_row(double delta_deg, double sigma_n) {
   b.element_length = 1.7 * r;
   b.travel = 0.02;
   b.margin = 4.0 * r;
-  build_interface_box(w, b);
+  add_interface_box_walls(w, b);
+  add_rigid_base_sheet(w, b);
   w.resolve_pair_laws();
   const double mu = std::tan(delta_deg * std::numbers::pi / 180.0);
   w.pair_laws[0 * 3 + 2].mu = w.pair_laws[2 * 3 + 0].mu = mu;

@@ -1,0 +1,33 @@
+// Inertia of a geosynthetic sheet in a quasi-static test: its nodes are light and its
+// elements stiff, so its own critical time step would be far shorter than the grains'.
+// The nodes' inertial masses are raised so that the sheet does not set the time step; a
+// quasi-static pull does not feel the sheet's inertia, and gravity still acts on the
+// true mass (docs/lab_tests.md, "Pull-out").
+#pragma once
+
+#include <algorithm>
+
+#include "integrate/critical_timestep.hpp"
+
+namespace geodem {
+
+// Returns the factor applied to every node's mass. young: the soil's contact modulus
+// (2D: kn = E, a grain on each face); J and element_length: the sheet's.
+inline double scale_sheet_inertia(World<2>& w, double young, double J, double element_length) {
+  auto& S = w.spars;
+  World<2> grains_only = w;
+  grains_only.spars = SparChains<2>{};
+  grains_only.rebuild_needed = true;
+  const double dt = critical_timestep(grains_only) / w.dt_safety;
+  const double m_over_k = 0.5 * dt * dt;  // dt^2 = 2 m / k
+  const double k_contact = 2.0 * young;
+  double factor = 1.0;
+  for (std::size_t i = 0; i < S.nodes(); ++i) {
+    const double k = 2.0 * J / element_length + k_contact;
+    factor = std::max(factor, 1.1 * k * m_over_k / S.mass[i]);
+  }
+  for (std::size_t i = 0; i < S.nodes(); ++i) S.inertial_mass[i] = factor * S.mass[i];
+  return factor;
+}
+
+}  // namespace geodem
