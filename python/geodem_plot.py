@@ -656,6 +656,9 @@ def plot_calibrate(out, summary, h=None):
     with the verification and the upscaled values; the micro parameters and the miss
     per iteration."""
     results = summary.get("results", {})
+    if "local_friction_deg" in results:
+        from geodem_plot_interface import plot_interface_calibration
+        return plot_interface_calibration(out, summary, save)
     made = []
     targets = summary.get("scenario", {}).get("targets", {}) or {}
     iterations = results.get("iterations") or []
@@ -824,6 +827,11 @@ def main(argv):
     if plotter is None:
         print(f"no plots defined for kind {kind!r}", file=sys.stderr)
         return 1
+    if kind == "pullout" and "groups" in summary.get("results", {}):
+        from geodem_plot_pullout_series import plot_pullout_series
+        made = plot_pullout_series(out, summary, save)
+        print("plots: " + ", ".join(str(out / m) for m in made))
+        return 0
     # The studies write no history.csv: their plots use the summary and their tables.
     history = read_history(out / "history.csv") if (out / "history.csv").is_file() else {}
     if kind not in STUDY_KINDS and (not history or not history.get("time")):

@@ -55,3 +55,34 @@ def plot_interface_shear(out, summary, h, save):
     ax.grid(alpha=0.3)
     save(fig, out, "interface_envelope.png", made)
     return made
+
+
+def plot_interface_calibration(out, summary, save):
+    """Interface calibration: the macroscopic interface friction of each iteration
+    against the sheet's local friction, the target and the verification."""
+    made = []
+    r = summary["results"]
+    target = summary["scenario"]["targets"]["interface_friction_deg"]
+    local = [it["local_friction_deg"] for it in r["iterations"]]
+    macro = [it["macro"]["interface_friction_deg"] for it in r["iterations"]]
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    ax.plot(local, macro, "o-", label="search iterations (search seeds)")
+    for k, (x, y) in enumerate(zip(local, macro)):
+        ax.annotate(str(k), (x, y), textcoords="offset points", xytext=(4, 4), fontsize=8)
+    v = r.get("verification")
+    if v:
+        scatter = v["scatter"]["interface_friction_deg"]
+        ax.errorbar([r["local_friction_deg"]], [v["macro"]["interface_friction_deg"]],
+                    yerr=[scatter], fmt="s", color="tab:red", capsize=4,
+                    label=f"verification, {v['seeds']} fresh seeds (1 std)")
+    ax.axhline(target, color="k", ls="--", lw=1, label=f"target {target:g} deg")
+    lo = min(local + macro + [target]) - 3
+    hi = max(local + macro + [target]) + 3
+    ax.plot([lo, hi], [lo, hi], ":", color="grey", lw=1, label="macro = local")
+    ax.set_xlabel("local interface friction of the sheet (deg)")
+    ax.set_ylabel("macroscopic interface friction, peak (deg)")
+    ax.set_title(f"Interface calibration: local friction {r['local_friction_deg']:.3g} deg")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    save(fig, out, "interface_calibration.png", made)
+    return made

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,7 +17,6 @@
 #include <random>
 #include <string>
 #include <type_traits>
-#include <unistd.h>
 
 #include "core/dim.hpp"
 #include "core/step.hpp"

@@ -50,6 +50,12 @@ int run_study(const Loaded& l, const std::string& file, bool check_only,
     if (check_only) return std::printf("%s: ok (kind = \"rate_study\")\n", file.c_str()), kOk;
     summary = geodem::run_rate_study(s, opt);
     plots = s.study.plots;
+  } else if (geodem::is_interface_calibration(l.root)) {
+    const auto s = geodem::read_interface_calibrate(l.root, file);
+    if (check_only)
+      return std::printf("%s: ok (kind = \"calibrate\", interface)\n", file.c_str()), kOk;
+    summary = geodem::run_interface_calibrate(s, opt);
+    plots = s.plots;
   } else {
     const auto s = geodem::read_calibrate(l.root, file);
     if (check_only) return std::printf("%s: ok (kind = \"calibrate\")\n", file.c_str()), kOk;
@@ -162,13 +168,17 @@ int run_main(int argc, char** argv) {
     }
     if (l.kind == "series" || l.kind == "rate_study" || l.kind == "calibrate")
       return run_study(l, scenario, check->parsed(), opt);
-    if (geodem::comm::size() > 1)
+    // A pull-out over seeds or grain sizes runs its runs as a study does.
+    const bool pullout_series =
+        l.kind == "pullout" && (l.root["seeds"].value_or(1LL) > 1 || l.root.contains("refinement"));
+    if (geodem::comm::size() > 1 && !pullout_series)
       throw geodem::InputError(scenario, 0, "kind",
-                               "only studies (series, rate_study, calibrate) share their runs "
-                               "across MPI ranks; run this scenario without mpirun");
+                               "only studies (series, rate_study, calibrate) and pull-outs over "
+                               "seeds share their runs across MPI ranks; run this scenario "
+                               "without mpirun");
     // Single runs stop on SIGINT/SIGTERM after the step in progress, with a checkpoint;
     // studies keep the default (their finished runs are reused on rerunning).
-    geodem::install_interrupt_handlers();
+    if (!pullout_series) geodem::install_interrupt_handlers();
     if (l.kind == "triaxial") {
       const geodem::TriaxialSettings t = geodem::read_triaxial(l.root, scenario);
       if (*check) {
@@ -187,19 +197,37 @@ int run_main(int argc, char** argv) {
                     p.anchor.shape.c_str());
         return kOk;
       }
+      if (p.seeds > 1 || !p.radius_factors.empty()) {
+        if (opt.resume)
+          throw geodem::InputError(scenario, 0, "seeds",
+                                   "a pull-out over several seeds resumes by rerunning it into "
+                                   "the same folder (its finished runs are kept)");
+        const auto summary = geodem::run_pullout_series(l.root, p, opt);
+        if (geodem::comm::rank() != 0) return kOk;
+        if (p.plots) geodem::make_plots(out_dir, quiet);
+        const auto& t = summary["results"]["T_max"];
+        if (!quiet && t.is_object())
+          std::fprintf(stderr, "done: T_max %.4g N/m (mean of %d seeds, cv %.2g); outputs in %s\n",
+                       t["mean"].get<double>(), p.seeds, t["cv"].get<double>(), out_dir.c_str());
+        return summary["results"]["failed_runs"].empty() ? kOk : kFailure;
+      }
       const auto summary = geodem::run_pullout(p, opt);
       if (p.plots) geodem::make_plots(out_dir, quiet);
       if (!quiet)
-        std::fprintf(stderr, "done: T_max %.4g N/m (analytic slippage %.4g N/m); outputs in %s\n",
+        std::fprintf(stderr,
+                     "done: T_max %.4g N/m, mechanism %s (design: slippage %.4g N/m, soil mass "
+                     "%.4g N/m); outputs in %s\n",
                      summary["results"]["T_max"].get<double>(),
-                     summary["results"]["T_analytic_slip"].get<double>(), out_dir.c_str());
+                     summary["results"]["mechanism"].get<std::string>().c_str(),
+                     summary["results"]["T_analytic_slip"].get<double>(),
+                     summary["results"]["T_analytic_soil"].get<double>(), out_dir.c_str());
       return kOk;
     }
     if (l.kind == "interface_shear") {
       const geodem::InterfaceShearSettings p = geodem::read_interface_shear(l.root, scenario);
       if (*check) {
-        std::printf("%s: ok (kind = \"interface_shear\", %zu normal stresses)\n",
-                    scenario.c_str(), p.normal_stress.size());
+        std::printf("%s: ok (kind = \"interface_shear\", %zu normal stresses)\n", scenario.c_str(),
+                    p.normal_stress.size());
         return kOk;
       }
       const auto summary = geodem::run_interface_shear(p, opt);

@@ -19,9 +19,13 @@ namespace geodem {
 template <int D>
 class PlateServo : public Controller<D> {
  public:
-  PlateServo(std::size_t wall, double target, double max_speed, double gain = 0.3,
-             double integral_gain = 0.02)
-      : wall_(wall), target_(target), vmax_(max_speed), gain_(gain), integral_gain_(integral_gain) {}
+  PlateServo(std::size_t wall, double target, double max_speed, double gain = 0.5,
+             double integral_gain = 0.05)
+      : wall_(wall),
+        target_(target),
+        vmax_(max_speed),
+        gain_(gain),
+        integral_gain_(integral_gain) {}
 
   double target() const { return target_; }
   void set_target(double t) { target_ = t; }

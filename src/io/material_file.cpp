@@ -31,9 +31,16 @@ void write_material_file(const std::string& path, const MaterialFile& m) {
     t << k << " = " << format_number(v.get<double>()) << "\n";
   t << "\n[grain]\n";
   if (!m.grain.empty()) t << "shape = \"" << m.grain << "\"\n";
-  t << "radius_fuzz = " << format_number(m.radius_fuzz) << "\n"
-    << "porosity = " << format_number(m.porosity) << "\n"
-    << "\n# Measured on the verification samples (not read back).\n[macro]\n";
+  t << "radius_fuzz = " << format_number(m.radius_fuzz) << "\n";
+  if (m.porosity > 0.0) t << "porosity = " << format_number(m.porosity) << "\n";
+  if (m.interface.is_object()) {
+    t << "\n# The soil-sheet interface: the sheet's local friction, and the macroscopic friction\n"
+      << "# and adhesion interface shear tests measure with it (the sheet_* keys say which\n"
+      << "# sheet; they are not read back).\n[interface]\n";
+    for (const auto& [k, v] : m.interface.items())
+      t << k << " = " << format_number(v.get<double>()) << "\n";
+  }
+  t << "\n# Measured on the verification samples (not read back).\n[macro]\n";
   for (const auto& [k, v] : m.macro.items()) {
     if (v.is_array()) {
       t << k << " = [";
@@ -52,6 +59,28 @@ namespace {
 // Inserts `value` under `key` of `into` unless the scenario gives it already.
 void give_default(toml::table& into, const std::string& key, const toml::node& value) {
   if (!into.contains(key)) into.insert(key, value);
+}
+
+toml::table& table_of(toml::table& root, const char* name) {
+  if (!root[name].is_table()) root.insert_or_assign(name, toml::table{});
+  return *root[name].as_table();
+}
+
+// A calibrated interface: the sheet takes the local friction unless the scenario sets its
+// own; the pull-out's design estimate then takes the macroscopic friction and adhesion
+// measured with it (with a local friction of the scenario's own they do not apply).
+void expand_interface(toml::table& root, const toml::table& itf, const std::string& kind) {
+  const toml::node* local = itf.get("local_friction_deg");
+  if (!local) return;
+  toml::table& sheet = table_of(root, "sheet");
+  if (sheet.contains("interface_friction_deg")) return;
+  sheet.insert("interface_friction_deg", *local);
+  if (kind != "pullout") return;
+  toml::table& analytic = table_of(root, "analytic");
+  if (const toml::node* macro = itf.get("macro_friction_deg"))
+    give_default(analytic, "interface_friction_deg", *macro);
+  if (const toml::node* adhesion = itf.get("macro_adhesion"))
+    give_default(analytic, "interface_adhesion", *adhesion);
 }
 
 }  // namespace
@@ -118,6 +147,8 @@ void expand_material_reference(toml::table& root, const std::string& kind,
     if (k.str() == "friction_deg" && mat->contains("friction")) continue;
     give_default(*mat, std::string(k.str()), v);
   }
+  if (const toml::table* itf = file["interface"].as_table(); itf && soil_kind)
+    expand_interface(root, *itf, kind);
   const toml::table* grain = file["grain"].as_table();
   if (!grain) return;
   toml::table* shape_table = soil_kind ? mat : root["sample"].as_table();
@@ -126,7 +157,7 @@ void expand_material_reference(toml::table& root, const std::string& kind,
     if (const toml::node* fuzz = grain->get("radius_fuzz"))
       give_default(*shape_table, "radius_fuzz", *fuzz);
   }
-  if (kind != "pullout") {
+  if (!soil_kind) {
     if (const toml::node* porosity = grain->get("porosity"))
       if (toml::table* c = root["compaction"].as_table())
         give_default(*c, "target_porosity", *porosity);

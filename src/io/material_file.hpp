@@ -21,14 +21,20 @@ struct MaterialFile {
   double radius_fuzz = 0.0;
   double porosity = 0.0;  // of the calibrated samples
   nlohmann::json macro;   // measured macro values, for the record
+  // The calibrated soil-sheet interface (null when none): local_friction_deg (the
+  // sheet's interface_friction_deg), macro_friction_deg and macro_adhesion (what an
+  // interface shear test measures with it), and the sheet it was calibrated with.
+  nlohmann::json interface;
 };
 
 void write_material_file(const std::string& path, const MaterialFile& m);
 
 // Replaces `preset = ...` / `file = ...` in the scenario's material table ([material],
-// or [soil] for kind = "pullout") by the file's values, where the scenario does not give
-// them: material keys, the grain shape and radius fuzz, and (lab tests) the porosity as
-// compaction.target_porosity.
+// or [soil] for the pull-out and interface shear kinds) by the file's values, where the
+// scenario does not give them: material keys, the grain shape and radius fuzz, (lab
+// tests) the porosity as compaction.target_porosity, and a calibrated interface: the
+// sheet's local interface friction and, in a pull-out whose sheet takes it, the
+// macroscopic interface friction and adhesion of its design estimate.
 void expand_material_reference(toml::table& root, const std::string& kind,
                                const std::string& scenario_file);
 

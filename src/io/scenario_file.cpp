@@ -32,7 +32,9 @@ LoadedScenario finish_loading(toml::table root, const std::vector<std::string>& 
     throw InputError(file, static_cast<int>(kind->source().begin.line), "kind",
                      "unknown kind \"" + l.kind + "\"; expected one of " + known);
   }
-  expand_material_reference(l.root, l.kind, file);
+  // An interface calibration's material sits in [soil], as in the interface shear test.
+  const bool soil_study = l.kind == "calibrate" && is_interface_calibration(l.root);
+  expand_material_reference(l.root, soil_study ? "interface_shear" : l.kind, file);
   return l;
 }
 
@@ -65,6 +67,8 @@ void check_scenario_settings(const LoadedScenario& l, const std::string& file) {
     (void)read_series(l.root, file);
   } else if (l.kind == "rate_study") {
     (void)read_rate_study(l.root, file);
+  } else if (is_interface_calibration(l.root)) {
+    (void)read_interface_calibrate(l.root, file);
   } else {
     (void)read_calibrate(l.root, file);
   }

@@ -65,23 +65,35 @@ bool overlaps_trench(const AnchorGeometry& g, double y0, const Point2& x, double
   return false;
 }
 
-SlipEstimate slip_estimate(const AnchorGeometry& g, double unit_weight, double surcharge,
-                           double tan_delta, double K, double runout_load) {
-  SlipEstimate e;
+AnchorEstimate anchor_resistance(const AnchorGeometry& g, double unit_weight, double surcharge,
+                                 double tan_phi, double adhesion, double K, double runout_load,
+                                 bool capstan) {
+  AnchorEstimate e;
   e.K = K;
   e.sigma_v0 = unit_weight * g.cover + surcharge;
-  e.runout = 2.0 * tan_delta * (runout_load >= 0.0 ? runout_load : g.runout_length * e.sigma_v0);
+  e.runout = 2.0 * adhesion * g.runout_length +
+             2.0 * tan_phi * (runout_load >= 0.0 ? runout_load : g.runout_length * e.sigma_v0);
   if (g.shape != "runout") {
     const double half = g.shape == "V" ? 0.5 * g.trench_width : 0.0;
     const double l = std::hypot(half, g.trench_depth);
     const double sinb = g.trench_depth / l, cosb = half / l;
     const double beta = std::atan2(g.trench_depth, half);
-    e.trench = 2.0 * tan_delta * (cosb * cosb + K * sinb * sinb) *
-               (e.sigma_v0 * l + 0.5 * unit_weight * l * l * sinb);
-    e.capstan = std::exp(beta * tan_delta);
+    e.trench = 2.0 * adhesion * l + 2.0 * tan_phi * (cosb * cosb + K * sinb * sinb) *
+                                        (e.sigma_v0 * l + 0.5 * unit_weight * l * l * sinb);
+    if (capstan) e.capstan = std::exp(beta * tan_phi);
   }
   e.tension = e.runout + e.capstan * e.trench;
   return e;
+}
+
+SlipEstimate slip_estimate(const AnchorGeometry& g, double unit_weight, double surcharge,
+                           double tan_delta, double K, double runout_load, double adhesion) {
+  return anchor_resistance(g, unit_weight, surcharge, tan_delta, adhesion, K, runout_load, true);
+}
+
+AnchorEstimate soil_estimate(const AnchorGeometry& g, double unit_weight, double surcharge,
+                             double tan_phi, double cohesion, double K, double runout_load) {
+  return anchor_resistance(g, unit_weight, surcharge, tan_phi, cohesion, K, runout_load, false);
 }
 
 }  // namespace geodem

@@ -23,14 +23,14 @@
 namespace geodem {
 
 struct InterfaceBox {
-  double length = 0.3;          // soil box length (m): the sheared length of the interface
-  double thickness = 0.002;     // sheet thickness (m): its upper face is at y = thickness
-  double element_length = 0.01; // sheet element length (m)
-  double travel = 0.05;         // how far the sheet will slide (m)
-  double margin = 0.02;         // sheet length past each wall beyond the travel (m)
-  double mass_per_area = 0.5;   // kg/m^2 (the base drives the nodes: only for the record)
-  double stiffness_J = 1e6;     // N/m (a rigid base keeps the sheet unstretched)
-  double bending = 0.0;         // N m/rad per m at each node (a sheet pulled through soil)
+  double length = 0.3;           // soil box length (m): the sheared length of the interface
+  double thickness = 0.002;      // sheet thickness (m): its upper face is at y = thickness
+  double element_length = 0.01;  // sheet element length (m)
+  double travel = 0.05;          // how far the sheet will slide (m)
+  double margin = 0.02;          // sheet length past each wall beyond the travel (m)
+  double mass_per_area = 0.5;    // kg/m^2 (the base drives the nodes: only for the record)
+  double stiffness_J = 1e6;      // N/m (a rigid base keeps the sheet unstretched)
+  double bending = 0.0;          // N m/rad per m at each node (a sheet pulled through soil)
   std::uint16_t wall_material = 1, sheet_material = 2;
 };
 

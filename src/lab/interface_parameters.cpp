@@ -63,7 +63,8 @@ InterfaceTest interface_test(const InterfaceCurve& c, double residual_from) {
   const double b = std::min(u_end, t.displacement_at_peak + h);
   if (b > a)
     t.dilation_angle_deg =
-        std::atan((at(c.displacement, c.dilation, b) - at(c.displacement, c.dilation, a)) / (b - a)) *
+        std::atan((at(c.displacement, c.dilation, b) - at(c.displacement, c.dilation, a)) /
+                  (b - a)) *
         kDeg;
   return t;
 }
@@ -72,8 +73,8 @@ InterfaceEnvelope fit_interface_envelope(const std::vector<double>& normal,
                                          const std::vector<double>& shear) {
   InterfaceEnvelope e;
   if (normal.empty() || normal.size() != shear.size()) return e;
-  const bool distinct = std::any_of(normal.begin(), normal.end(),
-                                    [&](double s) { return s != normal.front(); });
+  const bool distinct =
+      std::any_of(normal.begin(), normal.end(), [&](double s) { return s != normal.front(); });
   if (normal.size() < 2 || !distinct) {
     e.friction_deg = std::atan(shear.front() / normal.front()) * kDeg;
     return e;

@@ -20,13 +20,13 @@ struct InterfaceTest {
   double normal_stress = 0.0;  // mean over the test (Pa)
   double peak_shear = 0.0;     // Pa
   double displacement_at_peak = 0.0;
-  double peak_ratio = 0.0;         // tau / sigma_n at the peak
-  double residual_shear = 0.0;     // mean over the residual range (Pa)
-  double residual_ratio = 0.0;     // mean tau / mean sigma_n over it
-  double shear_stiffness = 0.0;    // secant to half the peak shear stress (Pa/m)
-  double dilation_max = 0.0;       // m
-  double dilation_end = 0.0;       // m
-  double dilation_angle_deg = 0.0; // atan of the plate's rise per slip around the peak
+  double peak_ratio = 0.0;          // tau / sigma_n at the peak
+  double residual_shear = 0.0;      // mean over the residual range (Pa)
+  double residual_ratio = 0.0;      // mean tau / mean sigma_n over it
+  double shear_stiffness = 0.0;     // secant to half the peak shear stress (Pa/m)
+  double dilation_max = 0.0;        // m
+  double dilation_end = 0.0;        // m
+  double dilation_angle_deg = 0.0;  // atan of the plate's rise per slip around the peak
 };
 
 // residual_from: fraction of the largest displacement from which the residual state is

@@ -20,11 +20,13 @@ InterfaceShearSettings read_interface_shear(const toml::table& root, const std::
   }
   read_deposited_soil(r, s);
   if (s.base == "soil" && s.lower_height < 6.0 * s.radius)
-    r.fail("box", "the soil under the sheet must be at least 3 grains' diameters thick "
-                  "(box.lower_height >= 6 x soil.radius)");
+    r.fail("box",
+           "the soil under the sheet must be at least 3 grains' diameters thick "
+           "(box.lower_height >= 6 x soil.radius)");
   if (s.box_height < 6.0 * s.radius || s.box_length < 10.0 * s.radius)
-    r.fail("box", "the box must hold at least 3 grains' diameters of soil (box.height >= 6 x "
-                  "soil.radius) and 5 along the sheet (box.length >= 10 x soil.radius)");
+    r.fail("box",
+           "the box must hold at least 3 grains' diameters of soil (box.height >= 6 x "
+           "soil.radius) and 5 along the sheet (box.length >= 10 x soil.radius)");
   read_sheet(r, s.radius, s);
 
   auto sh = r.table("shear");

@@ -30,7 +30,7 @@ struct InterfaceShearSettings : DepositedSoil, SheetSettings {
   double rate = 0.005;                                      // m/s of the sheet under the soil
   double max_displacement = 0.03;                           // m
   double damping = 0.2;                                     // local damping while shearing
-  double residual_from = 0.8;  // the residual state: displacements past this fraction
+  double residual_from = 0.8;             // the residual state: displacements past this fraction
   double consolidation_tolerance = 0.01;  // plate stress within this fraction of its target
   int history_points = 200;               // rows of each test in history.csv
   // [time]

@@ -15,6 +15,7 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
   r.choice("kind", "pullout", {"pullout"});
   r.integer("dimension", 2, 2, 2);
   s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, (1LL << 62)));
+  s.seeds = static_cast<int>(r.integer("seeds", 1, 1, 10000));
   r.string("title", "");
 
   if (auto b = r.table("box")) {
@@ -67,6 +68,10 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
   p->finish();
   if (auto an = r.table("analytic")) {
     s.soil_friction_deg = an->in_range("soil_friction_deg", s.soil_friction_deg, 0.0, 89.0);
+    s.soil_cohesion = an->non_negative("soil_cohesion", 0.0);
+    if (an->has("interface_friction_deg"))
+      s.interface_macro_friction_deg = an->in_range("interface_friction_deg", 34.0, 0.0, 89.0);
+    s.interface_adhesion = an->non_negative("interface_adhesion", 0.0);
     if (an->has("earth_pressure_coefficient"))
       s.earth_pressure_coefficient = an->in_range("earth_pressure_coefficient", 0.5, 0.0, 10.0);
     an->finish();
@@ -83,6 +88,13 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
     s.plots = o->boolean("plots", true);
     s.columns = static_cast<int>(o->integer("columns", 24, 1, 10000));
     o->finish();
+  }
+  if (auto f = r.table("refinement")) {
+    s.radius_factors = f->numbers("radius_factors", {1.0, 1.0 / std::sqrt(2.0), 0.5}, 2);
+    for (double x : s.radius_factors)
+      if (!(x > 0.05 && x <= 20.0))
+        f->fail("radius_factors", "expected grain size factors in (0.05, 20]");
+    f->finish();
   }
   if (auto t = r.table("checkpoint")) {
     s.checkpoint = read_checkpoint_spec(*t);

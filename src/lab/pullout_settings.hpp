@@ -29,6 +29,11 @@ struct AnchorGeometry {
 struct PulloutSettings : DepositedSoil, SheetSettings {
   std::string file;
   std::uint64_t seed = 1;
+  // Statistics of the structure: seeds seed, seed + 1, ... (runs side by side), and the
+  // grain refinement: the whole series again with the grains scaled by each factor
+  // (docs/lab_tests.md, "Pull-out over seeds and grain sizes").
+  int seeds = 1;
+  std::vector<double> radius_factors;  // [refinement] radius_factors; empty: none
   // [box]
   double box_length = 1.2;  // m
   double foundation = 0.2;  // soil thickness below the run-out level (m)
@@ -45,7 +50,12 @@ struct PulloutSettings : DepositedSoil, SheetSettings {
   std::vector<double> profiles_at;  // displacements at which tension profiles are written
   // [analytic]
   double soil_friction_deg = 35.0;           // macroscopic friction angle of the soil (for K0)
+  double soil_cohesion = 0.0;                // macroscopic cohesion of the soil (Pa)
   double earth_pressure_coefficient = -1.0;  // < 0: Jaky K0 = 1 - sin(phi)
+  // Macroscopic interface friction and adhesion, as an interface shear test measures them
+  // (< 0: the sheet's local interface friction; docs/lab_tests.md, "Interface shear").
+  double interface_macro_friction_deg = -1.0;
+  double interface_adhesion = 0.0;
   // [time]
   double dt_safety = 0.8;
   int dt_update_interval = 20;

@@ -28,6 +28,7 @@
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
 #include "lab/anchorage.hpp"
+#include "lab/anchorage_mechanism.hpp"
 #include "lab/lab_phases.hpp"
 #include "lab/sheet_inertia.hpp"
 #include "lab/soil_editing.hpp"
@@ -84,20 +85,27 @@ struct Pull {
   std::vector<Vec> start;
   std::vector<int> column;
   std::uint64_t zone_count = 0;
+  // The grains next to the sheet (by id) and the nodes' start positions: the measures of
+  // the mechanism (lab/anchorage_mechanism.hpp).
+  std::vector<char> near;
+  std::vector<Vec> node_start;
   double unit_weight = 0.0, sigma_q = 0.0, runout_load = 0.0;
   SlipEstimate est;
+  AnchorEstimate est_soil;
   std::vector<double> profile_at;  // displacements of the tension profiles to come
   Vec clamp0 = Vec::Zero();
   double next_record = 0.0, tension_sum = 0.0;
   std::uint64_t tension_steps = 0;
   double t_max = 0.0, d_at_max = 0.0, soil_at_max = 0.0, displacement = 0.0;
+  double soil_median_at_max = 0.0, near_at_max = 0.0, nodes_at_max = 0.0;
   std::uint64_t pull_start = 0;
 
   template <class Archive>
   void visit(Archive& a) {
-    a(zone), a(start), a(column), a(zone_count), a(unit_weight), a(sigma_q), a(runout_load);
-    a(est), a(profile_at), a(clamp0), a(next_record), a(tension_sum), a(tension_steps);
-    a(t_max), a(d_at_max), a(soil_at_max), a(displacement), a(pull_start);
+    a(zone), a(start), a(column), a(zone_count), a(near), a(node_start), a(unit_weight);
+    a(sigma_q), a(runout_load), a(est), a(est_soil), a(profile_at), a(clamp0), a(next_record);
+    a(tension_sum), a(tension_steps), a(t_max), a(d_at_max), a(soil_at_max), a(displacement);
+    a(soil_median_at_max), a(near_at_max), a(nodes_at_max), a(pull_start);
   }
 };
 
@@ -138,6 +146,11 @@ struct Pullout {
         checkpoints("pullout", 2, settings.resolved, options.out_dir, settings.checkpoint) {}
 
   double elapsed() const { return checkpoints.elapsed(); }
+  // The interface friction of the slippage estimate: the macroscopic one when given.
+  double macro_interface_deg() const {
+    return s.interface_macro_friction_deg >= 0.0 ? s.interface_macro_friction_deg
+                                                 : s.interface_friction_deg;
+  }
 
   template <class Archive>
   void visit_state(Archive& a) {
@@ -230,7 +243,9 @@ struct Pullout {
             "soil_displacement_median",
             "kinetic_energy",
             "unbalanced",
-            "sheet_contacts"};
+            "sheet_contacts",
+            "near_sheet_displacement",
+            "sheet_displacement"};
   }
   static std::vector<std::string> profile_columns() { return {"displacement", "s", "tension"}; }
 
@@ -519,8 +534,16 @@ struct Pullout {
     const double K = s.earth_pressure_coefficient >= 0.0
                          ? s.earth_pressure_coefficient
                          : 1.0 - std::sin(s.soil_friction_deg * kDeg);
-    u.est = slip_estimate(s.anchor, u.unit_weight, u.sigma_q,
-                          std::tan(s.interface_friction_deg * kDeg), K, u.runout_load);
+    u.est =
+        slip_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(macro_interface_deg() * kDeg), K,
+                      u.runout_load, s.interface_adhesion);
+    u.est_soil =
+        soil_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(s.soil_friction_deg * kDeg),
+                      s.soil_cohesion, K, u.runout_load);
+    // Next to the sheet: within a grain diameter of its faces.
+    u.near = grains_near_sheet(w, 2.0 * s.radius + 0.5 * s.thickness);
+    for (std::size_t i = 0; i < n; ++i) u.near[i] = u.near[i] && P.pos[i].x() > 0.0 ? 1 : 0;
+    u.node_start = S.pos;
 
     write_states(opt.out_dir + "/states/grains_initial.csv",
                  opt.out_dir + "/states/sheet_initial.csv", w, u.column);
@@ -536,6 +559,7 @@ struct Pullout {
     u.tension_sum = 0.0;
     u.tension_steps = 0;
     u.t_max = u.d_at_max = u.soil_at_max = u.displacement = 0.0;
+    u.soil_median_at_max = u.near_at_max = u.nodes_at_max = 0.0;
     u.pull_start = w.step;
     phase = Phase::kPull;
   }
@@ -558,11 +582,16 @@ struct Pullout {
         // The tension of a row is its mean over the steps since the previous row: the
         // per-step value carries the sheet's own vibrations.
         const double T = u.tension_sum / static_cast<double>(u.tension_steps);
-        const double soil = soil_displacement();
+        const double soil = soil_displacement(), median = soil_displacement(true);
+        const double near = mean_grain_displacement(w, u.near, u.start);
+        const double nodes = mean_embedded_node_displacement(w, u.node_start);
         history.row({static_cast<double>(w.step), w.time, u.displacement, T, S.tension[0], soil,
-                     soil_displacement(true), kinetic_energy(w), unbalanced_force_ratio(w),
-                     static_cast<double>(w.stats.spar_contacts)});
-        if (T > u.t_max) u.t_max = T, u.d_at_max = u.displacement, u.soil_at_max = soil;
+                     median, kinetic_energy(w), unbalanced_force_ratio(w),
+                     static_cast<double>(w.stats.spar_contacts), near, nodes});
+        if (T > u.t_max) {
+          u.t_max = T, u.d_at_max = u.displacement, u.soil_at_max = soil;
+          u.soil_median_at_max = median, u.near_at_max = near, u.nodes_at_max = nodes;
+        }
         u.tension_sum = 0.0;
         u.tension_steps = 0;
         while (u.next_record <= u.displacement) u.next_record += d_record;
@@ -637,7 +666,22 @@ nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt)
   results["T_max"] = u.t_max;
   results["displacement_at_T_max"] = u.d_at_max;
   results["T_analytic_slip"] = u.est.tension;
+  results["T_analytic_soil"] = u.est_soil.tension;
+  const bool slip_governs = u.est.tension <= u.est_soil.tension;
+  const double design = slip_governs ? u.est.tension : u.est_soil.tension;
+  results["T_design"] = design;
+  results["design_mechanism"] = slip_governs ? "slippage" : "soil_deformation";
   results["T_max_over_analytic"] = u.est.tension > 0.0 ? u.t_max / u.est.tension : 0.0;
+  results["T_max_over_design"] = design > 0.0 ? u.t_max / design : 0.0;
+  const Mechanism m =
+      classify_mechanism(u.d_at_max > 0.0 ? u.soil_median_at_max / u.d_at_max : 0.0,
+                         u.nodes_at_max > 0.0 ? 1.0 - u.near_at_max / u.nodes_at_max : 1.0);
+  results["mechanism"] = m.name;
+  results["mechanism_measures"] = {{"soil_ratio", m.soil_ratio},
+                                   {"sheet_slip_ratio", m.sheet_slip_ratio},
+                                   {"soil_displacement_median_at_T_max", u.soil_median_at_max},
+                                   {"near_sheet_displacement_at_T_max", u.near_at_max},
+                                   {"sheet_displacement_at_T_max", u.nodes_at_max}};
   const double soil_mean = run.soil_displacement();
   results["soil_displacement_mean"] = soil_mean;
   results["soil_displacement_median"] = run.soil_displacement(true);
@@ -649,6 +693,12 @@ nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt)
                          {"surcharge_measured", u.sigma_q},
                          {"runout_load", u.runout_load},
                          {"K", u.est.K},
+                         {"interface_friction_deg", run.macro_interface_deg()},
+                         {"interface_adhesion", s.interface_adhesion},
+                         {"soil_friction_deg", s.soil_friction_deg},
+                         {"soil_cohesion", s.soil_cohesion},
+                         {"soil_runout", u.est_soil.runout},
+                         {"soil_trench", u.est_soil.trench},
                          {"runout_friction", u.est.runout},
                          {"trench_friction", u.est.trench},
                          {"capstan_factor", u.est.capstan}};

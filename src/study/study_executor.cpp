@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <sstream>
@@ -17,6 +19,8 @@
 #include "core/error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/output_files.hpp"
+#include "lab/run_interface_shear.hpp"
+#include "lab/run_pullout.hpp"
 #include "lab/run_triaxial.hpp"
 #include "lab/triaxial_settings.hpp"
 #include "study/study_comm.hpp"
@@ -44,22 +48,44 @@ nlohmann::json finished_summary(const std::string& dir, const nlohmann::json& re
 // [checkpoint]), a run that was stopped with the study continues from its newest checkpoint,
 // and one whose checkpoints do not fit (another scenario's, damaged) starts afresh. A
 // finished run's checkpoints are deleted: it is reused from its summary.
-nlohmann::json run_or_resume(const TriaxialSettings& settings, RunOptions ro) {
+template <class Settings, class Run>
+nlohmann::json run_or_resume(const Settings& settings, RunOptions ro, Run run) {
   const std::string folder = checkpoint_folder(ro.out_dir);
   std::error_code ec;
   ro.resume = settings.checkpoint.enabled() && std::filesystem::exists(folder, ec) &&
               !std::filesystem::is_empty(folder, ec);
   nlohmann::json summary;
   try {
-    summary = run_triaxial(settings, ro);
+    summary = run(settings, ro);
   } catch (const InputError&) {
     if (!ro.resume) throw;
     std::filesystem::remove_all(folder, ec);
     ro.resume = false;
-    summary = run_triaxial(settings, ro);
+    summary = run(settings, ro);
   }
   std::filesystem::remove_all(folder, ec);
   return summary;
+}
+
+// A study's run, read and checked: its resolved scenario and how to run it. The lab
+// kinds a study can run: triaxial, interface_shear, pullout.
+struct CheckedRun {
+  nlohmann::json resolved;
+  std::function<nlohmann::json(const RunOptions&)> run;
+};
+
+CheckedRun check_run(const toml::table& scenario, const std::string& file) {
+  const std::string kind = scenario["kind"].value_or(std::string("triaxial"));
+  if (kind == "interface_shear") {
+    auto s = std::make_shared<InterfaceShearSettings>(read_interface_shear(scenario, file));
+    return {s->resolved, [s](const RunOptions& ro) { return run_interface_shear(*s, ro); }};
+  }
+  if (kind == "pullout") {
+    auto s = std::make_shared<PulloutSettings>(read_pullout(scenario, file));
+    return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_pullout); }};
+  }
+  auto s = std::make_shared<TriaxialSettings>(read_triaxial(scenario, file));
+  return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_triaxial); }};
 }
 
 std::string format_duration(double s) {
@@ -164,9 +190,9 @@ StudyExecutor::StudyExecutor(StudyOptions options) : opt_(std::move(options)) {
 std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs,
                                                const std::string& stage) {
   // Every scenario is checked before anything runs (all ranks, so all fail alike).
-  std::vector<TriaxialSettings> settings;
+  std::vector<CheckedRun> settings;
   settings.reserve(runs.size());
-  for (const auto& r : runs) settings.push_back(read_triaxial(r.scenario, opt_.file));
+  for (const auto& r : runs) settings.push_back(check_run(r.scenario, opt_.file));
 
   const std::vector<std::size_t> mine = my_share(runs);
   double share_cost = 0.0;
@@ -195,7 +221,7 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
           RunOptions ro;
           ro.out_dir = dir;
           ro.quiet = true;
-          summary = run_or_resume(settings[i], ro);
+          summary = settings[i].run(ro);
           std::error_code ec;
           std::filesystem::remove(cat(dir, "/vtk"), ec);  // empty: the runs write no VTK
         } catch (const InstabilityError& e) {

@@ -19,7 +19,7 @@ namespace geodem {
 
 struct StudyRun {
   std::string id;        // folder name under OUT/runs/
-  toml::table scenario;  // a complete kind = "triaxial" scenario
+  toml::table scenario;  // a complete lab scenario: triaxial, interface_shear or pullout
   double cost = 1.0;     // relative run time: the schedule and the ETA use it
 };
 

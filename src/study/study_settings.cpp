@@ -147,4 +147,52 @@ CalibrateSettings read_calibrate(const toml::table& root, const std::string& fil
   return s;
 }
 
+bool is_interface_calibration(const toml::table& root) {
+  const toml::table* t = root["targets"].as_table();
+  return t && t->contains("interface_friction_deg");
+}
+
+InterfaceCalibrateSettings read_interface_calibrate(const toml::table& root,
+                                                    const std::string& file) {
+  InterfaceCalibrateSettings s;
+  s.file = file;
+  s.base = root;
+  s.base.erase("targets");
+  s.base.erase("calibrate");
+  s.base.insert_or_assign("kind", "interface_shear");
+  s.plots = root["output"]["plots"].value_or(true);
+  set_key(s.base, "output.vtk", false);
+  set_key(s.base, "output.plots", false);
+  try {
+    s.check = read_interface_shear(s.base, file);
+  } catch (const InputError& e) {
+    if (e.line() != 0 || e.key().empty()) throw;
+    throw InputError(e.file(), source_line(root, e.key()), e.key(), e.detail());
+  }
+  s.resolved = s.check.resolved;
+  s.resolved["kind"] = "calibrate";
+  s.resolved.erase("output");
+  {
+    TableReader t = study_table(root, file, s.resolved, "targets", "interface_friction_deg");
+    s.target_friction_deg = t.in_range("interface_friction_deg", 34.0, 1.0, 80.0);
+    if (t.has("interface_adhesion")) s.target_adhesion = t.non_negative("interface_adhesion", 0.0);
+    t.finish();
+  }
+  if (s.check.normal_stress.size() < 2 && !std::isnan(s.target_adhesion))
+    throw InputError(file, source_line(root, "shear.normal_stress"), "shear.normal_stress",
+                     "an adhesion target needs two normal stresses or more (envelope fit)");
+  TableReader c(root, "", file, &s.resolved);
+  if (auto t = c.table("calibrate")) {
+    s.name = t->string("name", "calibrated");
+    s.seeds = static_cast<int>(t->integer("seeds", 2, 1, 1000));
+    s.verify_seeds = static_cast<int>(t->integer("verify_seeds", 3, 0, 1000));
+    s.max_iterations = static_cast<int>(t->integer("max_iterations", 8, 1, 100));
+    s.tol_deg = t->in_range("tolerance_deg", 0.5, 0.01, 10.0);
+    s.verify_deg = t->in_range("verify_deg", 1.5, 0.01, 10.0);
+    s.verify_adhesion = t->in_range("verify_adhesion", 2000.0, 1.0, 1e9);
+    t->finish();
+  }
+  return s;
+}
+
 }  // namespace geodem

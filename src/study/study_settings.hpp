@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "lab/interface_shear_settings.hpp"
 #include "lab/triaxial_settings.hpp"
 
 namespace geodem {
@@ -70,6 +71,27 @@ struct CalibrateSettings {
   double upscale = 2.0;  // grain size factor of the upscaling check (1: none)
   double gravity = 9.81;
 };
+
+// kind = "calibrate" over interface shear tests (docs/studies.md, "Interface
+// calibration"): the study file is an interface_shear scenario with [targets]
+// interface_friction_deg (and optionally interface_adhesion) and [calibrate].
+struct InterfaceCalibrateSettings {
+  std::string file;
+  toml::table base;  // the file without its study tables, kind = "interface_shear"
+  InterfaceShearSettings check;
+  nlohmann::json resolved;
+  bool plots = true;
+  double target_friction_deg = 34.0;
+  double target_adhesion = std::numeric_limits<double>::quiet_NaN();  // checked, not searched
+  std::string name = "calibrated";
+  int seeds = 2, verify_seeds = 3, max_iterations = 8;
+  double tol_deg = 0.5, verify_deg = 1.5, verify_adhesion = 2000.0;
+};
+
+// True when a calibrate file targets an interface ([targets] interface_friction_deg).
+bool is_interface_calibration(const toml::table& root);
+InterfaceCalibrateSettings read_interface_calibrate(const toml::table& root,
+                                                    const std::string& file);
 
 SeriesSettings read_series(const toml::table& root, const std::string& file);
 RateStudySettings read_rate_study(const toml::table& root, const std::string& file);

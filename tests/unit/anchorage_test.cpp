@@ -1,6 +1,7 @@
-// The anchorage geometry and the analytic slippage estimate (lab/anchorage.hpp) against
-// hand calculations: friction on both faces of a run-out, the at-rest lateral pressure on
-// the trench part, the capstan factor at the bend; the sheet's nodes fall on its corners.
+// The anchorage geometry and the design estimates (lab/anchorage.hpp) against hand
+// calculations: friction on both faces of a run-out, the at-rest lateral pressure on the
+// trench part, the capstan factor at the bend, adhesion; the soil-mass estimate with the
+// soil's strength and no capstan; the sheet's nodes fall on its corners.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -63,6 +64,64 @@ TEST(Anchorage, VShapeUsesTheNormalStressOnTheFlank) {
       2.0 * kTanDelta * sn_factor * (sv0 * l + 0.5 * gamma * l * l * std::sqrt(0.5));
   EXPECT_NEAR(e.trench, trench, 1e-9 * trench);
   EXPECT_NEAR(e.capstan, std::exp(0.25 * std::numbers::pi * kTanDelta), 1e-12);
+}
+
+// The paper's L anchor in hand-computed numbers (docs/lab_tests.md, "Design methods"):
+// run-out 1.0 m under 0.3 m of cover, 0.5 m down the trench, no surcharge.
+// Sand: gamma 16.7 kN/m3, phi 41 deg, c 0, delta 34 deg, a 0, K0 = 1 - sin 41 = 0.34394.
+//   sigma_v0 = 5010 Pa; slip: F1 = 2 x 5010 x 0.67451 = 6758.6 N/m,
+//   F2 = 2 x 0.67451 x 0.34394 x (5010 x 0.5 + 16700 x 0.25 / 2) = 2130.8 N/m,
+//   capstan exp(pi/2 x 0.67451) = 2.8850: T_slip = 6758.6 + 2.8850 x 2130.8 = 12906 N/m;
+//   soil: tan 41 = 0.86929: F1 = 8710.3, F2 = 2746.2 (no capstan): T_soil = 11456 N/m.
+// Silt: gamma 18.5 kN/m3, phi 34 deg, c 13 kPa, delta 34 deg, a 0, K0 = 0.44081.
+//   sigma_v0 = 5550 Pa; slip: F1 = 7487.0, F2 = 2 x 0.67451 x 0.44081 x 5087.5 = 3025.3,
+//   T_slip = 7487.0 + 2.8850 x 3025.3 = 16215 N/m;
+//   soil: F1 = 26000 + 7487.0, F2 = 13000 + 3025.3: T_soil = 49512 N/m.
+TEST(Anchorage, DesignHypothesesOfTheLAnchorByHand) {
+  AnchorGeometry g = anchor("L");
+  g.runout_length = 1.0;
+  g.cover = 0.3;
+  g.trench_depth = 0.5;
+  g.trench_width = 0.3;
+  const double deg = std::numbers::pi / 180.0;
+  const double K_sand = 1.0 - std::sin(41.0 * deg), K_silt = 1.0 - std::sin(34.0 * deg);
+  const double tan34 = std::tan(34.0 * deg), tan41 = std::tan(41.0 * deg);
+  const SlipEstimate slip_sand = slip_estimate(g, 16700.0, 0.0, tan34, K_sand);
+  const AnchorEstimate soil_sand = soil_estimate(g, 16700.0, 0.0, tan41, 0.0, K_sand);
+  EXPECT_NEAR(slip_sand.runout, 6758.6, 0.1);
+  EXPECT_NEAR(slip_sand.trench, 2130.8, 0.1);
+  EXPECT_NEAR(slip_sand.capstan, 2.8850, 1e-4);
+  EXPECT_NEAR(slip_sand.tension, 12906.0, 1.0);
+  EXPECT_NEAR(soil_sand.runout, 8710.3, 0.1);
+  EXPECT_NEAR(soil_sand.trench, 2746.2, 0.1);
+  EXPECT_DOUBLE_EQ(soil_sand.capstan, 1.0);
+  EXPECT_NEAR(soil_sand.tension, 11456.0, 1.0);
+  EXPECT_LT(soil_sand.tension, slip_sand.tension);  // the sand's soil mass gives way first
+  const SlipEstimate slip_silt = slip_estimate(g, 18500.0, 0.0, tan34, K_silt);
+  const AnchorEstimate soil_silt = soil_estimate(g, 18500.0, 0.0, tan34, 13000.0, K_silt);
+  EXPECT_NEAR(slip_silt.runout, 7487.0, 0.1);
+  EXPECT_NEAR(slip_silt.trench, 3025.3, 0.1);
+  EXPECT_NEAR(slip_silt.tension, 16215.0, 1.0);
+  EXPECT_NEAR(soil_silt.tension, 49512.0, 1.0);
+  EXPECT_GT(soil_silt.tension, slip_silt.tension);  // the silt's sheet slips first
+}
+
+TEST(Anchorage, AdhesionActsOnBothFacesOfEveryPart) {
+  AnchorGeometry g = anchor("V");
+  g.runout_length = 0.8;
+  g.cover = 0.2;
+  g.trench_depth = 0.3;
+  g.trench_width = 0.8;  // flank of length 0.5 m
+  const double a = 2000.0;
+  const SlipEstimate with = slip_estimate(g, 18000.0, 1000.0, kTanDelta, 0.5, -1.0, a);
+  const SlipEstimate without = slip_estimate(g, 18000.0, 1000.0, kTanDelta, 0.5);
+  EXPECT_NEAR(with.runout - without.runout, 2.0 * a * 0.8, 1e-9);
+  EXPECT_NEAR(with.trench - without.trench, 2.0 * a * 0.5, 1e-9);
+  EXPECT_NEAR(with.tension - without.tension, 2.0 * a * (0.8 + with.capstan * 0.5), 1e-9);
+  // A run-out is never governed by the soil mass when phi >= delta and c >= a.
+  g = anchor("runout");
+  EXPECT_GE(soil_estimate(g, 18000.0, 0.0, kTanDelta, 0.0, 0.5).tension,
+            slip_estimate(g, 18000.0, 0.0, kTanDelta, 0.5).tension);
 }
 
 TEST(Anchorage, NodesOnEveryCornerAndTrenchRegions) {
