@@ -1,0 +1,217 @@
+"""Interface shear, interface calibration and pull-outs over seeds, through the command
+line: the quick versions of docs/anchorage_design.md's cases.
+
+Run by CTest: python3 test_anchorage.py GEODEM_BINARY REPO_ROOT
+"""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+GEODEM = None
+ROOT = None
+
+# A small shear box of two-disc clumps (about 100) on the sheet.
+SMALL_SHEAR = """
+kind = "interface_shear"
+seed = {seed}
+[box]
+length = 0.2
+height = 0.05
+base = "{base}"
+{lower}
+[soil]
+density = 2600.0
+young = 2e7
+kt_over_kn = 0.5
+friction_deg = 30.0
+grain = "pair_0.9"
+radius = 0.005
+deposit_friction_deg = 0.0
+[sheet]
+interface_friction_deg = {delta}
+stiffness_J = 1e6
+bending_stiffness = 0.1
+[shear]
+normal_stress = [10e3, 20e3]
+rate = 0.02
+max_displacement = {travel}
+history_points = 50
+[output]
+vtk = false
+"""
+
+
+def shear(delta=25.0, base="rigid", seed=1, travel=0.02):
+    lower = "lower_height = 0.05" if base == "soil" else ""
+    return SMALL_SHEAR.format(delta=delta, base=base, lower=lower, seed=seed, travel=travel)
+
+
+def run(*args, timeout=600):
+    return subprocess.run([GEODEM, *args], capture_output=True, text=True, timeout=timeout)
+
+
+class AnchorageTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = Path(self.tmp.name)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def write(self, text, name="s.toml"):
+        p = self.dir / name
+        p.write_text(text)
+        return str(p)
+
+    def test_check_examples(self):
+        for ex in sorted((ROOT / "examples" / "interface_shear2d").glob("*.toml")):
+            r = run("check", str(ex))
+            self.assertEqual(r.returncode, 0, f"{ex}: {r.stderr}")
+
+    def test_rigid_base_gives_the_local_friction(self):
+        # Clumps lying on a flat rigid sheet slide on it without rolling: every contact at
+        # the Coulomb limit, so the envelope's friction is the local one.
+        out = self.dir / "rigid"
+        r = run("run", self.write(shear()), "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = json.loads((out / "summary.json").read_text())["results"]
+        print(f"[ measured ] rigid base, local 25 deg: macro {res['interface_friction_peak_deg']:.3f}"
+              f" deg (residual {res['interface_friction_residual_deg']:.3f})")
+        self.assertAlmostEqual(res["interface_friction_residual_deg"], 25.0, delta=0.5)
+        self.assertAlmostEqual(res["interface_adhesion_residual"], 0.0, delta=300.0)
+        for t in res["tests"]:
+            self.assertLess(t["servo_error_max"], 0.01)
+            self.assertAlmostEqual(t["normal_stress"] / t["normal_stress_target"], 1.0, delta=0.01)
+        for name in ("history.csv", "interface_shear.png", "interface_envelope.png"):
+            self.assertTrue((out / name).exists(), name)
+        with open(out / "history.csv") as f:
+            rows = list(csv.DictReader(f))
+        self.assertEqual({r["test"] for r in rows}, {"0", "1"})
+
+    def test_soil_base_holds_the_normal_stress(self):
+        out = self.dir / "soil"
+        r = run("run", self.write(shear(base="soil")), "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = json.loads((out / "summary.json").read_text())["results"]
+        for t in res["tests"]:
+            print(f"[ measured ] soil base at {t['normal_stress_target'] / 1e3:g} kPa: servo error"
+                  f" mean {t['servo_error_mean']:.4f}, max {t['servo_error_max']:.4f}")
+            self.assertLess(t["servo_error_mean"], 0.01)
+            self.assertGreater(t["peak_shear_stress"], 0.0)
+        self.assertTrue(res["peak_envelope"]["fitted"])
+
+    def test_input_errors(self):
+        for text, key, fragment in (
+                (shear().replace("height = 0.05", "height = 0.01"), "box", "3 grains"),
+                (shear().replace('base = "rigid"', 'base = "sand"'), "box.base", "rigid"),
+                (shear().replace("[10e3, 20e3]", "[10e3, -1]"), "shear.normal_stress", "> 0"),
+                (shear(base="soil", travel=0.15), "shear.max_displacement", "embedded")):
+            r = run("check", self.write(text))
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn(key, r.stderr)
+            self.assertIn(fragment, r.stderr)
+
+    def test_interface_calibration_writes_a_material_the_pullout_reads(self):
+        text = 'kind = "calibrate"\n' + shear(base="rigid").replace(
+            'kind = "interface_shear"\n', "") + """
+[targets]
+interface_friction_deg = 28.0
+[calibrate]
+name = "box_soil"
+seeds = 1
+verify_seeds = 1
+max_iterations = 4
+"""
+        out = self.dir / "cal"
+        r = run("run", self.write(text, "cal.toml"), "--out", str(out), "--quiet", "--threads", "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = json.loads((out / "summary.json").read_text())["results"]
+        print(f"[ measured ] interface calibration to 28 deg on a rigid base: local "
+              f"{res['local_friction_deg']:.2f} deg, verified "
+              f"{res['verification']['macro']['interface_friction_deg']:.2f} deg")
+        self.assertTrue(res["converged"])
+        self.assertAlmostEqual(res["local_friction_deg"], 28.0, delta=1.0)
+        material = (out / "material.toml").read_text()
+        self.assertIn("[interface]", material)
+        self.assertTrue((out / "interface_calibration.png").exists())
+        # A pull-out naming the file takes the local friction for its sheet and the
+        # macroscopic one for its design estimate.
+        pullout = f"""
+kind = "pullout"
+[box]
+length = 0.8
+foundation = 0.12
+[soil]
+file = "{out / 'material.toml'}"
+radius = 0.008
+[anchor]
+runout_length = 0.5
+cover = 0.1
+[pull]
+max_displacement = 0.002
+history_points = 10
+[output]
+vtk = false
+plots = false
+"""
+        po = self.dir / "po"
+        r = run("run", self.write(pullout, "po.toml"), "--out", str(po), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = json.loads((po / "summary.json").read_text())
+        self.assertAlmostEqual(s["scenario"]["sheet"]["interface_friction_deg"],
+                               res["local_friction_deg"], places=6)
+        self.assertAlmostEqual(s["results"]["analytic"]["interface_friction_deg"],
+                               res["verification"]["macro"]["interface_friction_deg"], places=6)
+
+    def test_pullout_over_seeds(self):
+        pullout = """
+kind = "pullout"
+seed = 4
+seeds = 3
+[box]
+length = 0.6
+foundation = 0.08
+[soil]
+density = 2600.0
+young = 2e7
+friction_deg = 30.0
+radius = 0.008
+[anchor]
+runout_length = 0.35
+cover = 0.06
+[sheet]
+interface_friction_deg = 20.0
+[pull]
+max_displacement = 0.01
+history_points = 20
+[analytic]
+soil_friction_deg = 30.0
+"""
+        out = self.dir / "seeds"
+        r = run("run", self.write(pullout, "po.toml"), "--out", str(out), "--quiet",
+                "--threads", "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = json.loads((out / "summary.json").read_text())["results"]
+        t = res["T_max"]
+        self.assertEqual(t["count"], 3)
+        with open(out / "pullout_runs.csv") as f:
+            rows = list(csv.DictReader(f))
+        tmax = [float(r["T_max"]) for r in rows]
+        self.assertEqual([int(float(r["seed"])) for r in rows], [4, 5, 6])
+        self.assertAlmostEqual(t["mean"], sum(tmax) / 3, delta=1e-9 * t["mean"])
+        self.assertAlmostEqual(t["min"], min(tmax))
+        self.assertLess(t["min"], t["max"])  # three different packings
+        self.assertTrue((out / "pullout_seeds.png").exists())
+        for k in (4, 5, 6):
+            self.assertTrue((out / "runs" / f"seed{k}" / "history.csv").exists())
+
+
+if __name__ == "__main__":
+    GEODEM = os.path.abspath(sys.argv.pop(1))
+    ROOT = Path(sys.argv.pop(1))
+    unittest.main(verbosity=2)
