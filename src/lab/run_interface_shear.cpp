@@ -29,6 +29,7 @@
 #include "lab/interface_box.hpp"
 #include "lab/interface_parameters.hpp"
 #include "lab/sheet_inertia.hpp"
+#include "lab/soil_deposit.hpp"
 #include "lab/soil_editing.hpp"
 #include "measure/measurements.hpp"
 
@@ -39,10 +40,6 @@ namespace {
 using Vec = Dim<2>::Vec;
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kGravity = 9.81;
-// Layer sizes, as the pull-out deposit: a dense 2D packing's porosity guess, and the
-// fraction of its height the bounding discs of a loose cloud fill.
-constexpr double kDensePorosity = 0.16, kLooseFill = 0.3;
-enum : std::uint16_t { kSoil = 0, kWalls = 1, kSheet = 2 };
 
 std::vector<std::string> history_columns() {
   return {"test",           "normal_stress_target", "step",         "time",         "displacement",
@@ -60,7 +57,7 @@ struct InterfaceShear {
   VtkSeries<2> vtk;
   HistoryCsv history;
   std::vector<ResolvedKind<2>> kinds;
-  double mean_grain_area = 0.0, bound_ratio = 1.0;
+  GrainAreas areas;  // sizes the deposited layers
   std::uint64_t total_steps = 0;
   std::size_t test = 0;  // index of the test in progress
 
@@ -94,19 +91,14 @@ struct InterfaceShear {
     box.mass_per_area = s.mass_per_area;
     box.stiffness_J = s.stiffness_J;
     box.bending = s.bending;
-    box.wall_material = kWalls;
-    box.sheet_material = kSheet;
+    box.wall_material = kDepositWalls;
+    box.sheet_material = kDepositSheet;
     add_interface_box_walls(w, box);
     if (!soil_base()) add_rigid_base_sheet(w, box);
     w.resolve_pair_laws();
-    // Soil against sheet: the interface friction alone (no rolling resistance, no bond).
-    for (auto* law : {&w.pair_laws[kSoil * 3 + kSheet], &w.pair_laws[kSheet * 3 + kSoil]}) {
-      law->mu = std::tan(s.interface_friction_deg * kDeg);
-      law->roll_mu = law->twist_mu = 0.0;
-      law->bond_tension = law->bond_shear = 0.0;
-    }
-    w.update_contact_extras();
-    if (s.deposit_friction_deg >= 0.0) set_soil_friction(std::tan(s.deposit_friction_deg * kDeg));
+    set_interface_laws(w, std::tan(s.interface_friction_deg * kDeg));
+    if (s.deposit_friction_deg >= 0.0)
+      set_soil_friction(w, s.soil, std::tan(s.deposit_friction_deg * kDeg));
     w.gravity = Vec(0.0, -kGravity);
     w.auto_dt = true;
     w.dt_safety = s.dt_safety;
@@ -115,31 +107,7 @@ struct InterfaceShear {
     w.threads = opt.threads;
     w.local_damping = s.deposit_damping;
     kinds = resolve_kinds<2>(s.grains);
-    double fsum = 0.0, bound_area = 0.0;
-    for (const auto& k : kinds) fsum += k.fraction;
-    for (const auto& k : kinds) {
-      const double scale2 =
-          k.size * k.size * (1.0 + s.radius_fuzz * s.radius_fuzz / 3.0) * s.radius * s.radius;
-      mean_grain_area += k.fraction / fsum * k.clump.volume * scale2;
-      bound_area += k.fraction / fsum * Dim<2>::volume(k.clump.bounding_radius) * scale2;
-    }
-    bound_ratio = bound_area / mean_grain_area;
-  }
-
-  // The soil's contact friction; its rolling friction follows in proportion.
-  void set_soil_friction(double mu) {
-    PairLaw& law = w.pair_laws[kSoil * 3 + kSoil];
-    const double ratio = s.soil.friction > 0.0 ? mu / s.soil.friction : 0.0;
-    law.mu = mu;
-    law.roll_mu = s.soil.rolling_friction * ratio;
-    law.twist_mu = s.soil.twisting_friction * ratio;
-  }
-
-  double top_of_grains() const {
-    double t = 0.0;
-    for (std::size_t i = 0; i < w.particles.size(); ++i)
-      t = std::max(t, w.particles.pos[i].y() + w.particles.radius[i]);
-    return t;
+    areas = grain_areas(kinds, s.radius, s.radius_fuzz);
   }
 
   // Steps until the soil is at rest (and the plate at its load, when there is one).
@@ -171,20 +139,10 @@ struct InterfaceShear {
   void deposit_layers(double base, double height, const std::string& stage) {
     int layer = 0;
     for (;;) {
-      const double from = std::max(base, w.particles.size() == 0 ? 0.0 : top_of_grains());
-      if (w.particles.size() > 0 && top_of_grains() >= height) break;
+      const double from = std::max(base, w.particles.size() == 0 ? 0.0 : top_of_grains(w));
+      if (w.particles.size() > 0 && top_of_grains(w) >= height) break;
       const double dense = std::min(s.layer_thickness, height - from + 2.0 * s.radius);
-      const auto count = static_cast<std::size_t>(
-          std::ceil((1.0 - kDensePorosity) * s.box_length * dense / mean_grain_area));
-      const double loose = dense * (1.0 - kDensePorosity) * bound_ratio / kLooseFill;
-      try {
-        add_random_grains<2>(w, kinds, Vec(0.0, from), Vec(s.box_length, from + loose), count,
-                             1.0 - kLooseFill, s.radius_fuzz, s.soil.density, kSoil, rng,
-                             Vec::Zero(), s.radius);
-      } catch (const std::runtime_error& e) {
-        throw InputError(s.file, 0, "soil.layer_thickness", e.what());
-      }
-      w.rebuild_needed = true;
+      drop_layer(w, s, s.file, kinds, areas, rng, 0.0, s.box_length, from, dense);
       settle(stage + " layer " + std::to_string(++layer), nullptr);
     }
     const auto& P = w.particles;
@@ -231,15 +189,10 @@ struct InterfaceShear {
 
   nlohmann::json run_test(double sigma_n) {
     w = deposit;
-    const std::size_t plate_wall = add_loading_plate(w, box, top_of_grains() + 0.5 * s.radius);
+    const std::size_t plate_wall = add_loading_plate(w, box, top_of_grains(w) + 0.5 * s.radius);
     w.resolve_pair_laws();
-    for (auto* law : {&w.pair_laws[kSoil * 3 + kSheet], &w.pair_laws[kSheet * 3 + kSoil]}) {
-      law->mu = std::tan(s.interface_friction_deg * kDeg);
-      law->roll_mu = law->twist_mu = 0.0;
-      law->bond_tension = law->bond_shear = 0.0;
-    }
-    set_soil_friction(s.soil.friction);
-    w.update_contact_extras();
+    set_soil_friction(w, s.soil, s.soil.friction);
+    set_interface_laws(w, std::tan(s.interface_friction_deg * kDeg));
     const double weight = weight_on_sheet();
     // The plate carries at least a fifth of the load: a plate barely touching a soil
     // that loads the sheet by its own weight does not control the normal stress.

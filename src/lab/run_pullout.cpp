@@ -31,6 +31,7 @@
 #include "lab/anchorage_mechanism.hpp"
 #include "lab/lab_phases.hpp"
 #include "lab/sheet_inertia.hpp"
+#include "lab/soil_deposit.hpp"
 #include "lab/soil_editing.hpp"
 #include "measure/measurements.hpp"
 
@@ -41,10 +42,7 @@ namespace {
 using Vec = Dim<2>::Vec;
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kGravity = 9.81;
-// Layer sizes: a dense 2D packing's porosity guess, and the fraction of its height the
-// bounding discs of a loose cloud fill (random sequential addition jams near 0.5 in 2D).
-constexpr double kDensePorosity = 0.16, kLooseFill = 0.3;
-enum : std::uint16_t { kSoil = 0, kWalls = 1, kSheet = 2 };
+enum : std::uint16_t { kSoil = kDepositSoil, kWalls = kDepositWalls, kSheet = kDepositSheet };
 constexpr std::size_t kFrontWall = 1;  // index in World::walls (floor, front, back)
 
 void write_states(const std::string& path_grains, const std::string& path_sheet, const World<2>& w,
@@ -116,10 +114,9 @@ struct Pullout {
   Progress progress;
   Random rng;
   std::vector<ResolvedKind<2>> kinds;
-  double mean_grain_area = 0.0;
-  double bound_ratio = 1.0;  // area of the grains' bounding discs over their own area
-  double y0 = 0.0;           // run-out level: top of the foundation
-  double top = 0.0;          // level of the cover's surface
+  GrainAreas areas;  // sizes the deposited layers
+  double y0 = 0.0;   // run-out level: top of the foundation
+  double top = 0.0;  // level of the cover's surface
   HistoryCsv prep_csv, history, profiles;
   VtkSeries<2> vtk;
   RunCheckpoints checkpoints;
@@ -196,8 +193,9 @@ struct Pullout {
     plane("front", Vec(0.0, 0.0), Vec(1.0, 0.0), 0.0);
     plane("back", Vec(s.box_length, 0.0), Vec(-1.0, 0.0), 0.0);
     w.resolve_pair_laws();
-    set_interface_laws();
-    if (s.deposit_friction_deg >= 0.0) set_soil_friction(std::tan(s.deposit_friction_deg * kDeg));
+    set_interface_laws(w, std::tan(s.interface_friction_deg * kDeg));
+    if (s.deposit_friction_deg >= 0.0)
+      set_soil_friction(w, s.soil, std::tan(s.deposit_friction_deg * kDeg));
     w.gravity = Vec(0.0, -kGravity);
     w.auto_dt = true;
     w.dt_safety = s.dt_safety;
@@ -206,28 +204,9 @@ struct Pullout {
     w.threads = opt.threads;
     w.local_damping = s.deposit_damping;
     kinds = resolve_kinds<2>(s.grains);
-    double fsum = 0.0;
-    for (const auto& k : kinds) fsum += k.fraction;
-    const double fuzz = s.radius_fuzz;
-    double bound_area = 0.0;
-    for (const auto& k : kinds) {
-      const double scale2 = k.size * k.size * (1.0 + fuzz * fuzz / 3.0) * s.radius * s.radius;
-      mean_grain_area += k.fraction / fsum * k.clump.volume * scale2;
-      bound_area += k.fraction / fsum * Dim<2>::volume(k.clump.bounding_radius) * scale2;
-    }
-    bound_ratio = bound_area / mean_grain_area;
+    areas = grain_areas(kinds, s.radius, s.radius_fuzz);
     y0 = s.foundation;
     top = y0 + s.anchor.cover;
-  }
-
-  // Soil against sheet: the interface friction alone (no rolling resistance, no bond).
-  void set_interface_laws() {
-    for (auto* law : {&w.pair_laws[kSoil * 3 + kSheet], &w.pair_laws[kSheet * 3 + kSoil]}) {
-      law->mu = std::tan(s.interface_friction_deg * kDeg);
-      law->roll_mu = law->twist_mu = 0.0;
-      law->bond_tension = law->bond_shear = 0.0;
-    }
-    w.update_contact_extras();
   }
 
   static std::vector<std::string> prep_columns() {
@@ -277,22 +256,6 @@ struct Pullout {
     checkpoints.resume_clock(wall_before);
   }
 
-  // Sets the soil's contact friction; its rolling friction follows in proportion (none
-  // while the friction is 0).
-  void set_soil_friction(double mu) {
-    PairLaw& law = w.pair_laws[kSoil * 3 + kSoil];
-    const double ratio = s.soil.friction > 0.0 ? mu / s.soil.friction : 0.0;
-    law.mu = mu;
-    law.roll_mu = s.soil.rolling_friction * ratio;
-    law.twist_mu = s.soil.twisting_friction * ratio;
-  }
-
-  double top_of_grains() const {
-    double t = 0.0;
-    for (std::size_t i = 0; i < w.particles.size(); ++i)
-      t = std::max(t, w.particles.pos[i].y() + w.particles.radius[i]);
-    return t;
-  }
   // Median over columns of [x0, x1] of the highest grain top: the free surface's level.
   double surface(double x0, double x1) const {
     constexpr int kCols = 12;
@@ -349,20 +312,10 @@ struct Pullout {
     for (;;) {
       if (!in_settle) {
         if (!(w.particles.size() == 0 || surface(x0, x1) < height)) break;
-        const double base = w.particles.size() == 0 ? 0.0 : top_of_grains();
+        const double base = w.particles.size() == 0 ? 0.0 : top_of_grains(w);
         const double from = w.particles.size() == 0 ? 0.0 : surface(x0, x1);
         const double dense = std::min(s.layer_thickness, height - from + 2.0 * s.radius);
-        const auto count = static_cast<std::size_t>(
-            std::ceil((1.0 - kDensePorosity) * (x1 - x0) * dense / mean_grain_area));
-        const double loose = dense * (1.0 - kDensePorosity) * bound_ratio / kLooseFill;
-        try {
-          add_random_grains<2>(w, kinds, Vec(x0, base), Vec(x1, base + loose), count,
-                               1.0 - kLooseFill, s.radius_fuzz, s.soil.density, kSoil, rng,
-                               Vec::Zero(), s.radius);
-        } catch (const std::runtime_error& e) {
-          throw InputError(s.file, 0, "soil.layer_thickness", e.what());
-        }
-        w.rebuild_needed = true;
+        drop_layer(w, s, s.file, kinds, areas, rng, x0, x1, base, dense);
         ++layer;
         in_settle = 1;
       }
@@ -428,7 +381,7 @@ struct Pullout {
       w.rebuild_needed = true;
     }
     if (s.surcharge > 0.0) add_surcharge_plate();
-    set_soil_friction(s.soil.friction);  // the soil's own friction from here on
+    set_soil_friction(w, s.soil, s.soil.friction);  // the soil's own friction from here on
     phase = Phase::kConsolidation;
   }
 
@@ -467,7 +420,7 @@ struct Pullout {
     plate.area = s.box_length;
     w.walls.push_back(plate);
     w.resolve_pair_laws();
-    set_interface_laws();
+    set_interface_laws(w, std::tan(s.interface_friction_deg * kDeg));
     // Speed cap: a twentieth of a radius per step (a resumed run loads the saved cap).
     const double vmax = w.dt > 0.0 ? 0.05 * s.radius / w.dt : 0.0;
     surcharge = std::make_shared<SurfacePressure<2>>(w.walls.size() - 1, s.surcharge, vmax);

@@ -1,0 +1,92 @@
+// Pieces of the layered gravity deposit that the 2D lab kinds over a deposited soil share
+// (pull-out, interface shear): the material indices, the soil's friction while it is
+// deposited, the sheet's interface law, the grains' area statistics that size each layer,
+// and the drop of one layer as a loose random cloud above the surface.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "clumps/grain_mix.hpp"
+#include "core/error.hpp"
+#include "core/random.hpp"
+#include "core/world.hpp"
+#include "lab/deposit_settings.hpp"
+
+namespace geodem {
+
+// Material indices of these kinds' worlds: soil, smooth walls, sheet.
+enum : std::uint16_t { kDepositSoil = 0, kDepositWalls = 1, kDepositSheet = 2 };
+
+// Sets the soil's contact friction; its rolling friction follows in proportion (none
+// while the friction is 0).
+inline void set_soil_friction(World<2>& w, const Material& soil, double mu) {
+  PairLaw& law = w.pair_laws[kDepositSoil * 3 + kDepositSoil];
+  const double ratio = soil.friction > 0.0 ? mu / soil.friction : 0.0;
+  law.mu = mu;
+  law.roll_mu = soil.rolling_friction * ratio;
+  law.twist_mu = soil.twisting_friction * ratio;
+}
+
+// Soil against sheet: the interface friction alone (no rolling resistance, no bond).
+inline void set_interface_laws(World<2>& w, double tan_delta) {
+  for (auto* law : {&w.pair_laws[kDepositSoil * 3 + kDepositSheet],
+                    &w.pair_laws[kDepositSheet * 3 + kDepositSoil]}) {
+    law->mu = tan_delta;
+    law->roll_mu = law->twist_mu = 0.0;
+    law->bond_tension = law->bond_shear = 0.0;
+  }
+  w.update_contact_extras();
+}
+
+inline double top_of_grains(const World<2>& w) {
+  double t = 0.0;
+  for (std::size_t i = 0; i < w.particles.size(); ++i)
+    t = std::max(t, w.particles.pos[i].y() + w.particles.radius[i]);
+  return t;
+}
+
+// Layer sizes: a dense 2D packing's porosity guess, and the fraction of its height the
+// bounding discs of a loose cloud fill (random sequential addition jams near 0.5 in 2D).
+constexpr double kDensePorosity = 0.16, kLooseFill = 0.3;
+
+// The mean area of a grain and the area of the grains' bounding discs over their own.
+struct GrainAreas {
+  double mean = 0.0, bound_ratio = 1.0;
+};
+inline GrainAreas grain_areas(const std::vector<ResolvedKind<2>>& kinds, double radius,
+                              double fuzz) {
+  double fsum = 0.0, bound_area = 0.0;
+  GrainAreas a;
+  for (const auto& k : kinds) fsum += k.fraction;
+  for (const auto& k : kinds) {
+    const double scale2 = k.size * k.size * (1.0 + fuzz * fuzz / 3.0) * radius * radius;
+    a.mean += k.fraction / fsum * k.clump.volume * scale2;
+    bound_area += k.fraction / fsum * Dim<2>::volume(k.clump.bounding_radius) * scale2;
+  }
+  a.bound_ratio = bound_area / a.mean;
+  return a;
+}
+
+// Drops the grains of a layer `dense` thick once settled over [x0, x1], as a loose random
+// cloud from height `base` up. A cloud that cannot be placed is an input error.
+inline void drop_layer(World<2>& w, const DepositedSoil& s, const std::string& file,
+                       const std::vector<ResolvedKind<2>>& kinds, const GrainAreas& areas,
+                       Random& rng, double x0, double x1, double base, double dense) {
+  using Vec = Dim<2>::Vec;
+  const auto count =
+      static_cast<std::size_t>(std::ceil((1.0 - kDensePorosity) * (x1 - x0) * dense / areas.mean));
+  const double loose = dense * (1.0 - kDensePorosity) * areas.bound_ratio / kLooseFill;
+  try {
+    add_random_grains<2>(w, kinds, Vec(x0, base), Vec(x1, base + loose), count, 1.0 - kLooseFill,
+                         s.radius_fuzz, s.soil.density, kDepositSoil, rng, Vec::Zero(), s.radius);
+  } catch (const std::runtime_error& e) {
+    throw InputError(file, 0, "soil.layer_thickness", e.what());
+  }
+  w.rebuild_needed = true;
+}
+
+}  // namespace geodem
