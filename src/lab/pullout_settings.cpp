@@ -72,8 +72,17 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
     if (an->has("interface_friction_deg"))
       s.interface_macro_friction_deg = an->in_range("interface_friction_deg", 34.0, 0.0, 89.0);
     s.interface_adhesion = an->non_negative("interface_adhesion", 0.0);
-    if (an->has("earth_pressure_coefficient"))
-      s.earth_pressure_coefficient = an->in_range("earth_pressure_coefficient", 0.5, 0.0, 10.0);
+    if (an->has("earth_pressure_coefficient")) {
+      double k = 0.5;
+      const auto mode = an->number_or_string("earth_pressure_coefficient", k, "jaky");
+      if (mode && *mode != "measured" && *mode != "jaky")
+        an->fail("earth_pressure_coefficient",
+                 "expected a number, \"jaky\" (1 - sin(soil_friction_deg)) or \"measured\"");
+      if (!mode && !(k >= 0.0 && k <= 10.0))
+        an->fail("earth_pressure_coefficient", "expected a coefficient from 0 to 10");
+      if (!mode) s.earth_pressure_coefficient = k;
+      s.earth_pressure_measured = mode && *mode == "measured";
+    }
     an->finish();
   }
   if (auto t = r.table("time")) {

@@ -52,6 +52,9 @@ struct PulloutSettings : DepositedSoil, SheetSettings {
   double soil_friction_deg = 35.0;           // macroscopic friction angle of the soil (for K0)
   double soil_cohesion = 0.0;                // macroscopic cohesion of the soil (Pa)
   double earth_pressure_coefficient = -1.0;  // < 0: Jaky K0 = 1 - sin(phi)
+  // earth_pressure_coefficient = "measured": the lateral stress the soil holds on the box's
+  // smooth back wall when the pull starts, over its vertical stress (docs/anchorage_design.md).
+  bool earth_pressure_measured = false;
   // Macroscopic interface friction and adhesion, as an interface shear test measures them
   // (< 0: the sheet's local interface friction; docs/lab_tests.md, "Interface shear").
   double interface_macro_friction_deg = -1.0;

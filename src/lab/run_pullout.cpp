@@ -43,7 +43,7 @@ using Vec = Dim<2>::Vec;
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kGravity = 9.81;
 enum : std::uint16_t { kSoil = kDepositSoil, kWalls = kDepositWalls, kSheet = kDepositSheet };
-constexpr std::size_t kFrontWall = 1;  // index in World::walls (floor, front, back)
+constexpr std::size_t kFrontWall = 1, kBackWall = 2;  // in World::walls (floor, front, back)
 
 void write_states(const std::string& path_grains, const std::string& path_sheet, const World<2>& w,
                   const std::vector<int>& column_by_id) {
@@ -88,6 +88,7 @@ struct Pull {
   std::vector<char> near;
   std::vector<Vec> node_start;
   double unit_weight = 0.0, sigma_q = 0.0, runout_load = 0.0;
+  double K_jaky = 0.0, K_wall = 0.0;  // earth pressure coefficients: Jaky's, measured
   SlipEstimate est;
   AnchorEstimate est_soil;
   std::vector<double> profile_at;  // displacements of the tension profiles to come
@@ -101,7 +102,8 @@ struct Pull {
   template <class Archive>
   void visit(Archive& a) {
     a(zone), a(start), a(column), a(zone_count), a(near), a(node_start), a(unit_weight);
-    a(sigma_q), a(runout_load), a(est), a(est_soil), a(profile_at), a(clamp0), a(next_record);
+    a(sigma_q), a(runout_load), a(K_jaky), a(K_wall), a(est), a(est_soil), a(profile_at), a(clamp0),
+        a(next_record);
     a(tension_sum), a(tension_steps), a(t_max), a(d_at_max), a(soil_at_max), a(displacement);
     a(soil_median_at_max), a(near_at_max), a(nodes_at_max), a(pull_start);
   }
@@ -484,9 +486,14 @@ struct Pullout {
     for (std::size_t i = 0; i < n; ++i)
       if (P.pos[i].y() > y0 && P.pos[i].x() > 0.0 && P.pos[i].x() < L)
         u.runout_load += Dim<2>::volume(P.radius[i]) * s.soil.density * kGravity;
-    const double K = s.earth_pressure_coefficient >= 0.0
-                         ? s.earth_pressure_coefficient
-                         : 1.0 - std::sin(s.soil_friction_deg * kDeg);
+    // The lateral stress the soil holds: on the smooth back wall, whose force balances
+    // K (q H + gamma H^2 / 2) over the soil's height H there.
+    const double H = top;
+    u.K_jaky = 1.0 - std::sin(s.soil_friction_deg * kDeg);
+    u.K_wall = w.walls[kBackWall].force.x() / (u.sigma_q * H + 0.5 * u.unit_weight * H * H);
+    const double K = s.earth_pressure_measured             ? u.K_wall
+                     : s.earth_pressure_coefficient >= 0.0 ? s.earth_pressure_coefficient
+                                                           : u.K_jaky;
     u.est =
         slip_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(macro_interface_deg() * kDeg), K,
                       u.runout_load, s.interface_adhesion);
@@ -646,6 +653,8 @@ nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt)
                          {"surcharge_measured", u.sigma_q},
                          {"runout_load", u.runout_load},
                          {"K", u.est.K},
+                         {"K_jaky", u.K_jaky},
+                         {"K_wall", u.K_wall},
                          {"interface_friction_deg", run.macro_interface_deg()},
                          {"interface_adhesion", s.interface_adhesion},
                          {"soil_friction_deg", s.soil_friction_deg},
