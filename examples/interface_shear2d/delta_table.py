@@ -74,8 +74,9 @@ def main(argv):
         print(f"| {d:g} | {cell('sand', 'soil', d, 'macro_deg')} |"
               f" {cell('sand', 'soil', d, 'adhesion_kPa')} | {cell('silt', 'soil', d, 'macro_deg')} |"
               f" {cell('silt', 'soil', d, 'adhesion_kPa')} | {cell('sand', 'rigid', d, 'macro_deg')} |")
-    print(f"({seeds} seeds on the soil base; {len(rows)} runs, {time.time() - t0:.0f} s wall time"
-          f" on 2 workers)")
+    print(f"({seeds} seeds on the soil base; {len(rows)} runs of"
+          f" {min(r['wall_s'] for r in rows):.0f}-{max(r['wall_s'] for r in rows):.0f} s each,"
+          f" two side by side; this invocation took {time.time() - t0:.0f} s)")
 
 
 if __name__ == "__main__":

@@ -15,7 +15,8 @@ InterfaceShearSettings read_interface_shear(const toml::table& root, const std::
     s.box_length = b->positive("length", s.box_length);
     s.box_height = b->positive("height", s.box_height);
     s.base = b->choice("base", s.base, {"rigid", "soil"});
-    if (s.base == "soil") s.lower_height = b->positive("lower_height", s.box_height);
+    // Read whatever the base, so that one file serves both (--set box.base=...).
+    s.lower_height = b->positive("lower_height", s.box_height);
     b->finish();
   }
   read_deposited_soil(r, s);
