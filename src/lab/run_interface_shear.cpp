@@ -24,6 +24,7 @@
 #include "core/error.hpp"
 #include "core/random.hpp"
 #include "core/step.hpp"
+#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "lab/interface_box.hpp"
@@ -117,6 +118,7 @@ struct InterfaceShear {
       w.measure_this_step = k % every == 0;
       step(w);
       ++total_steps;
+      stop_if_interrupted();
       if (!w.measure_this_step) continue;
       const double unb = unbalanced_force_ratio(w);
       double load_error = 0.0;
@@ -235,6 +237,7 @@ struct InterfaceShear {
       w.measure_this_step = u_next >= next || u_next >= s.max_displacement;
       step(w);
       ++total_steps;
+      stop_if_interrupted();
       u = std::abs(S.pos[0].x() - x0);
       const double pressure = servo->pressure(w);
       if (soil_base()) {
@@ -298,7 +301,8 @@ nlohmann::json envelope_json(const InterfaceEnvelope& e) {
 
 }  // namespace
 
-nlohmann::json run_interface_shear(const InterfaceShearSettings& s, const RunOptions& opt) {
+namespace {
+nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   InterfaceShear run(s, opt);
   prepare_output_dir(opt.out_dir);
@@ -333,6 +337,23 @@ nlohmann::json run_interface_shear(const InterfaceShearSettings& s, const RunOpt
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return write_run_summary(opt.out_dir, "interface_shear", "completed", s.resolved, results,
                            timing_json(run.w, wall_s, run.total_steps, opt.threads));
+}
+}  // namespace
+
+// A run stopped by a signal or an instability leaves a summary that says so (the history
+// written so far is whole); it is run again from the start (no checkpoints).
+nlohmann::json run_interface_shear(const InterfaceShearSettings& s, const RunOptions& opt) {
+  try {
+    return run_tests(s, opt);
+  } catch (const Interrupted& i) {
+    write_stopped_summary(opt.out_dir, "interface_shear", s.resolved, "interrupted",
+                          "signal " + std::to_string(i.signal), "", opt.threads);
+    throw;
+  } catch (const InstabilityError& e) {
+    write_stopped_summary(opt.out_dir, "interface_shear", s.resolved, "unstable", e.what(), "",
+                          opt.threads);
+    throw;
+  }
 }
 
 }  // namespace geodem
