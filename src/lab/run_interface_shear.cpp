@@ -127,7 +127,8 @@ struct InterfaceShear {
                       "unbalanced " + format_number(unb) +
                           (plate ? ", plate load off by " + format_number(100.0 * load_error) + " %"
                                  : std::string()));
-      if (k >= 5 * every && unb < s.settle_unbalanced && load_error < s.consolidation_tolerance)
+      if (k >= 5 * every && unb < s.settle_unbalanced && load_error < s.consolidation_tolerance &&
+          !soil_moving(w, s.soil.density))
         return;
       if (k >= s.max_settle_steps)
         throw std::runtime_error(

@@ -294,7 +294,7 @@ struct Pullout {
             stage, w.step, w.time, 0.0,
             std::to_string(w.particles.size()) + " grains, unbalanced " + format_number(unb));
         if (k % (5 * every) == 0) prep_row(stage_code, unb);
-        if (k >= 5 * every && unb < s.settle_unbalanced) {
+        if (k >= 5 * every && unb < s.settle_unbalanced && !soil_moving(w, s.soil.density)) {
           stage_step = 0;
           return;
         }

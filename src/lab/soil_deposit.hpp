@@ -15,6 +15,7 @@
 #include "core/random.hpp"
 #include "core/world.hpp"
 #include "lab/deposit_settings.hpp"
+#include "measure/measurements.hpp"
 
 namespace geodem {
 
@@ -47,6 +48,16 @@ inline double top_of_grains(const World<2>& w) {
   for (std::size_t i = 0; i < w.particles.size(); ++i)
     t = std::max(t, w.particles.pos[i].y() + w.particles.radius[i]);
   return t;
+}
+
+// A soil still falling or flowing: kinetic energy above a tenth of the energy of every
+// grain dropping by its own radius, sum(rho pi r^2 g r) (a soil at rest holds 1e-4 of it or
+// less). The unbalanced force ratio alone can be small in a falling cloud whose few
+// contacts are hard collisions: a layer once counted as settled while still in the air.
+inline bool soil_moving(const World<2>& w, double density) {
+  double e = 0.0;
+  for (double r : w.particles.radius) e += density * 3.14159265358979323846 * r * r * r;
+  return kinetic_energy(w) > 0.1 * e * w.gravity.norm();
 }
 
 // Layer sizes: a dense 2D packing's porosity guess, and the fraction of its height the
