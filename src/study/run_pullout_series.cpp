@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "core/text.hpp"
@@ -29,6 +30,12 @@ nlohmann::json stats(const std::vector<double>& v) {
           {"min", *std::min_element(v.begin(), v.end())},
           {"max", *std::max_element(v.begin(), v.end())},
           {"count", v.size()}};
+}
+
+// A number of a run's summary; NaN when it is null (JSON has no NaN: a NaN result, such
+// as an estimate of a failed measurement, is written as null).
+double number(const nlohmann::json& j) {
+  return j.is_number() ? j.get<double>() : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
@@ -78,19 +85,19 @@ nlohmann::json run_pullout_series(const toml::table& root, const PulloutSettings
       ids.push_back(runs[i].id);
       if (!run_completed(sm)) continue;
       const auto& r = sm["results"];
-      tmax.push_back(r["T_max"].get<double>());
-      dmax.push_back(r["displacement_at_T_max"].get<double>());
-      soil.push_back(r["soil_displacement_median"].get<double>());
-      grains.push_back(r["grains"].get<double>());
-      slip.push_back(r["T_analytic_slip"].get<double>());
-      soil_est.push_back(r["T_analytic_soil"].get<double>());
-      wall.push_back(sm["timing"]["wall_s"].get<double>());
+      tmax.push_back(number(r["T_max"]));
+      dmax.push_back(number(r["displacement_at_T_max"]));
+      soil.push_back(number(r["soil_displacement_median"]));
+      grains.push_back(number(r["grains"]));
+      slip.push_back(number(r["T_analytic_slip"]));
+      soil_est.push_back(number(r["T_analytic_soil"]));
+      wall.push_back(number(sm["timing"]["wall_s"]));
       const std::string m = r["mechanism"].get<std::string>();
       ++mechanisms[m];
       const auto& mm = r["mechanism_measures"];
       if (study_root())
         csv.row({f, static_cast<double>(s.seed) + k, grains.back(), tmax.back(), dmax.back(),
-                 soil.back(), mm["soil_ratio"].get<double>(), mm["sheet_slip_ratio"].get<double>(),
+                 soil.back(), number(mm["soil_ratio"]), number(mm["sheet_slip_ratio"]),
                  m == "slippage" ? 1.0 : 0.0, slip.back(), soil_est.back(), wall.back()});
     }
     nlohmann::json g;
