@@ -40,7 +40,6 @@ namespace {
 
 using Vec = Dim<2>::Vec;
 constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kGravity = 9.81;
 
 std::vector<std::string> history_columns() {
   return {"test",           "normal_stress_target", "step",         "time",         "displacement",
@@ -96,17 +95,8 @@ struct InterfaceShear {
     box.sheet_material = kDepositSheet;
     add_interface_box_walls(w, box);
     if (!soil_base()) add_rigid_base_sheet(w, box);
-    w.resolve_pair_laws();
-    set_interface_laws(w, std::tan(s.interface_friction_deg * kDeg));
-    if (s.deposit_friction_deg >= 0.0)
-      set_soil_friction(w, s.soil, std::tan(s.deposit_friction_deg * kDeg));
-    w.gravity = Vec(0.0, -kGravity);
-    w.auto_dt = true;
-    w.dt_safety = s.dt_safety;
-    w.dt_update_interval = s.dt_update_interval;
-    w.sort_interval = 10;
-    w.threads = opt.threads;
-    w.local_damping = s.deposit_damping;
+    configure_deposit_world(w, s, s.interface_friction_deg, s.dt_safety, s.dt_update_interval,
+                            opt.threads);
     kinds = resolve_kinds<2>(s.grains);
     areas = grain_areas(kinds, s.radius, s.radius_fuzz);
   }

@@ -194,17 +194,8 @@ struct Pullout {
     plane("floor", Vec(0.0, 0.0), Vec(0.0, 1.0), s.box_length);
     plane("front", Vec(0.0, 0.0), Vec(1.0, 0.0), 0.0);
     plane("back", Vec(s.box_length, 0.0), Vec(-1.0, 0.0), 0.0);
-    w.resolve_pair_laws();
-    set_interface_laws(w, std::tan(s.interface_friction_deg * kDeg));
-    if (s.deposit_friction_deg >= 0.0)
-      set_soil_friction(w, s.soil, std::tan(s.deposit_friction_deg * kDeg));
-    w.gravity = Vec(0.0, -kGravity);
-    w.auto_dt = true;
-    w.dt_safety = s.dt_safety;
-    w.dt_update_interval = s.dt_update_interval;
-    w.sort_interval = 10;
-    w.threads = opt.threads;
-    w.local_damping = s.deposit_damping;
+    configure_deposit_world(w, s, s.interface_friction_deg, s.dt_safety, s.dt_update_interval,
+                            opt.threads);
     kinds = resolve_kinds<2>(s.grains);
     areas = grain_areas(kinds, s.radius, s.radius_fuzz);
     y0 = s.foundation;

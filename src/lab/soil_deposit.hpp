@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -41,6 +42,25 @@ inline void set_interface_laws(World<2>& w, double tan_delta) {
     law->bond_tension = law->bond_shear = 0.0;
   }
   w.update_contact_extras();
+}
+
+// The laws and settings of a deposit's world, its walls and sheet added: the pair laws
+// resolved, the interface law, the deposit friction; gravity, the automatic time step,
+// renumbering every 10 steps, the threads and the deposit's damping.
+inline void configure_deposit_world(World<2>& w, const DepositedSoil& s, double interface_deg,
+                                    double dt_safety, int dt_update_interval, int threads) {
+  constexpr double kDegree = std::numbers::pi / 180.0;
+  w.resolve_pair_laws();
+  set_interface_laws(w, std::tan(interface_deg * kDegree));
+  if (s.deposit_friction_deg >= 0.0)
+    set_soil_friction(w, s.soil, std::tan(s.deposit_friction_deg * kDegree));
+  w.gravity = Dim<2>::Vec(0.0, -9.81);
+  w.auto_dt = true;
+  w.dt_safety = dt_safety;
+  w.dt_update_interval = dt_update_interval;
+  w.sort_interval = 10;
+  w.threads = threads;
+  w.local_damping = s.deposit_damping;
 }
 
 inline double top_of_grains(const World<2>& w) {
