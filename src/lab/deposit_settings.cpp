@@ -46,4 +46,14 @@ void read_sheet(TableReader& r, double radius, SheetSettings& s) {
   sh->finish();
 }
 
+void read_deposit_time(TableReader& r, DepositTime& s) {
+  auto t = r.table("time");
+  if (!t) return;
+  s.dt_safety = t->in_range("safety", s.dt_safety, 1e-3, 1.0);
+  s.dt_update_interval = static_cast<int>(t->integer("update_interval", 20, 1, 100000));
+  s.max_settle_steps =
+      static_cast<std::uint64_t>(t->integer("max_settle_steps", 400'000, 100, (1LL << 50)));
+  t->finish();
+}
+
 }  // namespace geodem

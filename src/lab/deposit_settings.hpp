@@ -3,6 +3,8 @@
 // by one function each so that both kinds accept the same keys with the same checks.
 #pragma once
 
+#include <cstdint>
+
 #include "clumps/grain_mix.hpp"
 #include "io/toml_reader.hpp"
 #include "materials/material.hpp"
@@ -33,6 +35,16 @@ struct SheetSettings {
   double bending = 0.0;        // N m/rad per m width at each node
   bool mass_scaling = true;    // raise node masses so the sheet does not set the time step
 };
+
+// [time] of these kinds: the automatic time step and the settling limit.
+struct DepositTime {
+  double dt_safety = 0.8;
+  int dt_update_interval = 20;
+  std::uint64_t max_settle_steps = 400'000;
+};
+
+// Reads [time] (optional).
+void read_deposit_time(TableReader& root, DepositTime& t);
 
 // Reads [soil] (required) and the [[templates]] it may name; the smooth wall material
 // is derived from the soil's.

@@ -48,13 +48,7 @@ InterfaceShearSettings read_interface_shear(const toml::table& root, const std::
       sh->in_range("consolidation_tolerance", s.consolidation_tolerance, 1e-4, 0.5);
   s.history_points = static_cast<int>(sh->integer("history_points", 200, 10, 1000000));
   sh->finish();
-  if (auto t = r.table("time")) {
-    s.dt_safety = t->in_range("safety", s.dt_safety, 1e-3, 1.0);
-    s.dt_update_interval = static_cast<int>(t->integer("update_interval", 20, 1, 100000));
-    s.max_settle_steps =
-        static_cast<std::uint64_t>(t->integer("max_settle_steps", 400'000, 100, (1LL << 50)));
-    t->finish();
-  }
+  read_deposit_time(r, s);
   if (auto o = r.table("output")) {
     s.vtk = o->boolean("vtk", true);
     s.plots = o->boolean("plots", true);

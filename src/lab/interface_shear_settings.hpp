@@ -14,7 +14,7 @@
 
 namespace geodem {
 
-struct InterfaceShearSettings : DepositedSoil, SheetSettings {
+struct InterfaceShearSettings : DepositedSoil, SheetSettings, DepositTime {
   std::string file;
   std::uint64_t seed = 1;
   // [box]
@@ -33,10 +33,7 @@ struct InterfaceShearSettings : DepositedSoil, SheetSettings {
   double residual_from = 0.8;             // the residual state: displacements past this fraction
   double consolidation_tolerance = 0.01;  // plate stress within this fraction of its target
   int history_points = 200;               // rows of each test in history.csv
-  // [time]
-  double dt_safety = 0.8;
-  int dt_update_interval = 20;
-  std::uint64_t max_settle_steps = 400'000;
+  // [time]: DepositTime
   // [output]
   bool vtk = true, plots = true;
   nlohmann::json resolved;

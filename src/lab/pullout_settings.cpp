@@ -85,13 +85,7 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
     }
     an->finish();
   }
-  if (auto t = r.table("time")) {
-    s.dt_safety = t->in_range("safety", s.dt_safety, 1e-3, 1.0);
-    s.dt_update_interval = static_cast<int>(t->integer("update_interval", 20, 1, 100000));
-    s.max_settle_steps =
-        static_cast<std::uint64_t>(t->integer("max_settle_steps", 400'000, 100, (1LL << 50)));
-    t->finish();
-  }
+  read_deposit_time(r, s);
   if (auto o = r.table("output")) {
     s.vtk = o->boolean("vtk", true);
     s.plots = o->boolean("plots", true);

@@ -26,7 +26,7 @@ struct AnchorGeometry {
   std::string front = "wall";
 };
 
-struct PulloutSettings : DepositedSoil, SheetSettings {
+struct PulloutSettings : DepositedSoil, SheetSettings, DepositTime {
   std::string file;
   std::uint64_t seed = 1;
   // Statistics of the structure: seeds seed, seed + 1, ... (runs side by side), and the
@@ -59,10 +59,7 @@ struct PulloutSettings : DepositedSoil, SheetSettings {
   // (< 0: the sheet's local interface friction; docs/lab_tests.md, "Interface shear").
   double interface_macro_friction_deg = -1.0;
   double interface_adhesion = 0.0;
-  // [time]
-  double dt_safety = 0.8;
-  int dt_update_interval = 20;
-  std::uint64_t max_settle_steps = 400'000;
+  // [time]: DepositTime
   // [output]
   bool vtk = true, plots = true;
   CheckpointSpec checkpoint;  // [checkpoint]
