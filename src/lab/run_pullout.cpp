@@ -30,6 +30,7 @@
 #include "lab/anchorage.hpp"
 #include "lab/anchorage_mechanism.hpp"
 #include "lab/lab_phases.hpp"
+#include "lab/pullout_results.hpp"
 #include "lab/sheet_inertia.hpp"
 #include "lab/soil_deposit.hpp"
 #include "lab/soil_editing.hpp"
@@ -45,23 +46,6 @@ constexpr double kGravity = 9.81;
 enum : std::uint16_t { kSoil = kDepositSoil, kWalls = kDepositWalls, kSheet = kDepositSheet };
 constexpr std::size_t kFrontWall = 1, kBackWall = 2;  // in World::walls (floor, front, back)
 
-void write_states(const std::string& path_grains, const std::string& path_sheet, const World<2>& w,
-                  const std::vector<int>& column_by_id) {
-  std::filesystem::create_directories(std::filesystem::path(path_grains).parent_path());
-  HistoryCsv g;
-  g.open(path_grains, {"id", "x", "y", "radius", "column"});
-  const auto& P = w.particles;
-  for (std::size_t i = 0; i < P.size(); ++i)
-    g.row({static_cast<double>(P.id[i]), P.pos[i].x(), P.pos[i].y(), P.radius[i],
-           static_cast<double>(column_by_id[P.id[i]])});
-  HistoryCsv sh;
-  sh.open(path_sheet, {"node", "x", "y", "tension"});
-  const auto& S = w.spars;
-  for (std::size_t i = 0; i < S.nodes(); ++i)
-    sh.row({static_cast<double>(i), S.pos[i].x(), S.pos[i].y(),
-            i < S.elements() ? S.tension[i] : 0.0});
-}
-
 // The stages of the test, in order. A checkpoint records the stage and the loop
 // counters within it; the run goes on from there on resuming.
 enum class Phase : std::uint8_t {
@@ -73,40 +57,6 @@ enum class Phase : std::uint8_t {
   kBonded,         // cohesive soils: settle with the bonds
   kPull,           // the free end pulled at a constant rate
   kDone
-};
-
-// The state of the pull, set up when the preparation ends.
-struct Pull {
-  // The anchoring soil: the fill above the run-out and in the trench, by grain id (ids
-  // of grains are their indices at the start of the pull: none is added or removed).
-  std::vector<char> zone;
-  std::vector<Vec> start;
-  std::vector<int> column;
-  std::uint64_t zone_count = 0;
-  // The grains next to the sheet (by id) and the nodes' start positions: the measures of
-  // the mechanism (lab/anchorage_mechanism.hpp).
-  std::vector<char> near;
-  std::vector<Vec> node_start;
-  double unit_weight = 0.0, sigma_q = 0.0, runout_load = 0.0;
-  double K_jaky = 0.0, K_wall = 0.0;  // earth pressure coefficients: Jaky's, measured
-  SlipEstimate est;
-  AnchorEstimate est_soil;
-  std::vector<double> profile_at;  // displacements of the tension profiles to come
-  Vec clamp0 = Vec::Zero();
-  double next_record = 0.0, tension_sum = 0.0;
-  std::uint64_t tension_steps = 0;
-  double t_max = 0.0, d_at_max = 0.0, soil_at_max = 0.0, displacement = 0.0;
-  double soil_median_at_max = 0.0, near_at_max = 0.0, nodes_at_max = 0.0;
-  std::uint64_t pull_start = 0;
-
-  template <class Archive>
-  void visit(Archive& a) {
-    a(zone), a(start), a(column), a(zone_count), a(near), a(node_start), a(unit_weight);
-    a(sigma_q), a(runout_load), a(K_jaky), a(K_wall), a(est), a(est_soil), a(profile_at), a(clamp0),
-        a(next_record);
-    a(tension_sum), a(tension_steps), a(t_max), a(d_at_max), a(soil_at_max), a(displacement);
-    a(soil_median_at_max), a(near_at_max), a(nodes_at_max), a(pull_start);
-  }
 };
 
 struct Pullout {
@@ -496,8 +446,8 @@ struct Pullout {
     for (std::size_t i = 0; i < n; ++i) u.near[i] = u.near[i] && P.pos[i].x() > 0.0 ? 1 : 0;
     u.node_start = S.pos;
 
-    write_states(opt.out_dir + "/states/grains_initial.csv",
-                 opt.out_dir + "/states/sheet_initial.csv", w, u.column);
+    write_pullout_states(opt.out_dir + "/states/grains_initial.csv",
+                         opt.out_dir + "/states/sheet_initial.csv", w, u.column);
     if (s.vtk) vtk.write(w);
     history.open(opt.out_dir + "/history.csv", history_columns());
     profiles.open(opt.out_dir + "/tension_profiles.csv", profile_columns());
@@ -608,53 +558,19 @@ nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt)
   run_lab_phases(run, "pullout", s.resolved, opt);
   const World<2>& w = run.w;
   const Pull& u = run.pull;
-  write_states(opt.out_dir + "/states/grains_final.csv", opt.out_dir + "/states/sheet_final.csv", w,
-               u.column);
+  write_pullout_states(opt.out_dir + "/states/grains_final.csv",
+                       opt.out_dir + "/states/sheet_final.csv", w, u.column);
   if (s.vtk) run.vtk.write(w);
 
   nlohmann::json results;
   results["preparation"] = run.prep;
-  results["T_max"] = u.t_max;
-  results["displacement_at_T_max"] = u.d_at_max;
-  results["T_analytic_slip"] = u.est.tension;
-  results["T_analytic_soil"] = u.est_soil.tension;
-  const bool slip_governs = u.est.tension <= u.est_soil.tension;
-  const double design = slip_governs ? u.est.tension : u.est_soil.tension;
-  results["T_design"] = design;
-  results["design_mechanism"] = slip_governs ? "slippage" : "soil_deformation";
-  results["T_max_over_analytic"] = u.est.tension > 0.0 ? u.t_max / u.est.tension : 0.0;
-  results["T_max_over_design"] = design > 0.0 ? u.t_max / design : 0.0;
-  const Mechanism m =
-      classify_mechanism(u.d_at_max > 0.0 ? u.soil_median_at_max / u.d_at_max : 0.0,
-                         u.nodes_at_max > 0.0 ? 1.0 - u.near_at_max / u.nodes_at_max : 1.0);
-  results["mechanism"] = m.name;
-  results["mechanism_measures"] = {{"soil_ratio", m.soil_ratio},
-                                   {"sheet_slip_ratio", m.sheet_slip_ratio},
-                                   {"soil_displacement_median_at_T_max", u.soil_median_at_max},
-                                   {"near_sheet_displacement_at_T_max", u.near_at_max},
-                                   {"sheet_displacement_at_T_max", u.nodes_at_max}};
+  pull_results(u, s, run.macro_interface_deg(), results);
   const double soil_mean = run.soil_displacement();
   results["soil_displacement_mean"] = soil_mean;
   results["soil_displacement_median"] = run.soil_displacement(true);
   results["soil_displacement_at_T_max"] = u.soil_at_max;
   results["soil_displacement_ratio"] = soil_mean / s.max_displacement;
   results["anchoring_zone_grains"] = u.zone_count;
-  results["analytic"] = {{"unit_weight", u.unit_weight},
-                         {"sigma_v0", u.est.sigma_v0},
-                         {"surcharge_measured", u.sigma_q},
-                         {"runout_load", u.runout_load},
-                         {"K", u.est.K},
-                         {"K_jaky", u.K_jaky},
-                         {"K_wall", u.K_wall},
-                         {"interface_friction_deg", run.macro_interface_deg()},
-                         {"interface_adhesion", s.interface_adhesion},
-                         {"soil_friction_deg", s.soil_friction_deg},
-                         {"soil_cohesion", s.soil_cohesion},
-                         {"soil_runout", u.est_soil.runout},
-                         {"soil_trench", u.est_soil.trench},
-                         {"runout_friction", u.est.runout},
-                         {"trench_friction", u.est.trench},
-                         {"capstan_factor", u.est.capstan}};
   const auto& S = w.spars;
   results["sheet"] = {
       {"nodes", S.nodes()}, {"elements", S.elements()}, {"node_mass_factor", run.node_mass_factor}};

@@ -1,0 +1,59 @@
+// The pull-out's measured state while the sheet is pulled, and what the test reports
+// from it (docs/lab_tests.md, "Pull-out"; docs/anchorage_design.md): the design estimates,
+// the mechanism, the analytic terms; and the grain and sheet state files.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/world.hpp"
+#include "lab/anchorage.hpp"
+#include "lab/pullout_settings.hpp"
+
+namespace geodem {
+
+// The state of the pull, set up when the preparation ends.
+struct Pull {
+  // The anchoring soil: the fill above the run-out and in the trench, by grain id (ids
+  // of grains are their indices at the start of the pull: none is added or removed).
+  std::vector<char> zone;
+  std::vector<Dim<2>::Vec> start;
+  std::vector<int> column;
+  std::uint64_t zone_count = 0;
+  // The grains next to the sheet (by id) and the nodes' start positions: the measures of
+  // the mechanism (lab/anchorage_mechanism.hpp).
+  std::vector<char> near;
+  std::vector<Dim<2>::Vec> node_start;
+  double unit_weight = 0.0, sigma_q = 0.0, runout_load = 0.0;
+  double K_jaky = 0.0, K_wall = 0.0;  // earth pressure coefficients: Jaky's, measured
+  SlipEstimate est;
+  AnchorEstimate est_soil;
+  std::vector<double> profile_at;  // displacements of the tension profiles to come
+  Dim<2>::Vec clamp0 = Dim<2>::Vec::Zero();
+  double next_record = 0.0, tension_sum = 0.0;
+  std::uint64_t tension_steps = 0;
+  double t_max = 0.0, d_at_max = 0.0, soil_at_max = 0.0, displacement = 0.0;
+  double soil_median_at_max = 0.0, near_at_max = 0.0, nodes_at_max = 0.0;
+  std::uint64_t pull_start = 0;
+
+  template <class Archive>
+  void visit(Archive& a) {
+    a(zone), a(start), a(column), a(zone_count), a(near), a(node_start), a(unit_weight);
+    a(sigma_q), a(runout_load), a(K_jaky), a(K_wall), a(est), a(est_soil), a(profile_at), a(clamp0),
+        a(next_record);
+    a(tension_sum), a(tension_steps), a(t_max), a(d_at_max), a(soil_at_max), a(displacement);
+    a(soil_median_at_max), a(near_at_max), a(nodes_at_max), a(pull_start);
+  }
+};
+
+// The estimates, the mechanism and the analytic terms of a finished pull, into `results`.
+void pull_results(const Pull& u, const PulloutSettings& s, double macro_interface_deg,
+                  nlohmann::json& results);
+
+// Grains (id, x, y, radius, column: the band each grain was in when the pull started) and
+// the sheet's nodes (with the tension of the element that starts there).
+void write_pullout_states(const std::string& path_grains, const std::string& path_sheet,
+                          const World<2>& w, const std::vector<int>& column_by_id);
+
+}  // namespace geodem
