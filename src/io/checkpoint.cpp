@@ -70,7 +70,7 @@ std::string checkpoint_folder(const std::string& out_dir) {
   return out_dir + "/checkpoint";
 }
 
-std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep) {
+void write_checkpoint_file(const std::string& path, const Checkpoint& c) {
   // The payload is the archive of (kind, dimension, step, time, scenario, runner, world),
   // written in pieces so that the world's bytes are not copied once more: the small fields
   // and each string's length prefix, then the runner's and the world's bytes as they are.
@@ -92,12 +92,11 @@ std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, in
   auto put = [&head](const auto& v) { head.append(reinterpret_cast<const char*>(&v), sizeof v); };
   put(kFormatVersion), put(kMachineMark), put(length), put(static_cast<std::uint32_t>(crc));
 
-  const std::string folder = checkpoint_folder(out_dir);
-  fs::create_directories(folder);
-  char name[64];
-  std::snprintf(name, sizeof name, "checkpoint_%012llu.bin",
-                static_cast<unsigned long long>(c.step));
-  const std::string path = folder + "/" + name, tmp = folder + "/." + name + ".tmp";
+  // A temporary name of this process alone: runs side by side may write the same file.
+  const fs::path target(path);
+  const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
+  const std::string tmp =
+      folder + "/." + target.filename().string() + "." + std::to_string(::getpid()) + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot write " + tmp);
@@ -111,6 +110,16 @@ std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, in
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
     throw std::runtime_error("cannot rename " + tmp + " to " + path);
   sync_path(folder, true);
+}
+
+std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep) {
+  const std::string folder = checkpoint_folder(out_dir);
+  fs::create_directories(folder);
+  char name[64];
+  std::snprintf(name, sizeof name, "checkpoint_%012llu.bin",
+                static_cast<unsigned long long>(c.step));
+  const std::string path = folder + "/" + name;
+  write_checkpoint_file(path, c);
 
   const auto files = checkpoint_files(folder);
   for (std::size_t k = static_cast<std::size_t>(std::max(keep, 1)); k < files.size(); ++k) {

@@ -38,7 +38,12 @@ struct Checkpoint {
 
 std::string checkpoint_folder(const std::string& out_dir);
 
-// Writes the checkpoint atomically and keeps the `keep` newest files; returns its path.
+// Writes one checkpoint file at `path` atomically (temporary name of this process, synced,
+// renamed): a crash leaves the previous file or the new one whole.
+void write_checkpoint_file(const std::string& path, const Checkpoint& c);
+
+// Writes the checkpoint atomically into out_dir's checkpoint folder and keeps the `keep` newest
+// files; returns its path.
 std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep);
 
 // The newest valid checkpoint of out_dir; each file skipped as invalid is reported in

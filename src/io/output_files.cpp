@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <stdexcept>
 
 namespace geodem {
@@ -20,6 +21,12 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
     throw std::runtime_error("cannot rename " + tmp + " to " + path);
+}
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 std::string format_number(double v) {
@@ -61,6 +68,8 @@ std::size_t HistoryCsv::reopen(const std::string& path, const std::vector<std::s
   }
   in.close();
   write_file_atomic(path, kept);
+  if (out_.is_open()) out_.close();
+  out_.clear();
   out_.open(path, std::ios::app);
   if (!out_) throw std::runtime_error("cannot write " + path);
   columns_ = columns.size();

@@ -12,6 +12,9 @@ namespace geodem {
 // Writes `content` to `path` atomically (temporary file + rename).
 void write_file_atomic(const std::string& path, const std::string& content);
 
+// The whole content of a file (runtime_error when it cannot be read).
+std::string read_text_file(const std::string& path);
+
 // history.csv: header row first, one row per recorded step.
 class HistoryCsv {
  public:

@@ -23,6 +23,7 @@ void read_deposited_soil(TableReader& r, DepositedSoil& s) {
   if (s.bonds && !cohesive)
     soil->fail("bonds", "bonds need soil.normal_cohesion or soil.shear_cohesion > 0");
   s.bond_gap_tolerance = soil->in_range("bond_gap_tolerance", 0.0, 0.0, 0.5);
+  s.deposit_cache = soil->string("deposit_cache", "");
   soil->finish();
   s.wall = s.soil;
   s.wall.name = "walls";

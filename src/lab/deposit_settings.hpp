@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "clumps/grain_mix.hpp"
 #include "io/toml_reader.hpp"
@@ -24,6 +25,8 @@ struct DepositedSoil {
   // Contact friction while the soil is deposited (< 0: the soil's own): lower friction
   // packs it denser, as the friction reduction of the triaxial test does.
   double deposit_friction_deg = -1.0;
+  // Folder of stored deposits (lab/deposit_cache.hpp); empty: every run deposits its own.
+  std::string deposit_cache;
 };
 
 struct SheetSettings {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "io/interrupt.hpp"
 #include "io/run_output.hpp"
 
 namespace geodem {
@@ -29,6 +30,20 @@ void run_lab_phases(Runner& r, const std::string& kind, const nlohmann::json& re
     throw InstabilityError(why);
   }
   r.progress.finish();
+}
+
+// Runs a lab runner's `body`; a run stopped by a signal leaves an "interrupted" summary
+// naming the checkpoint to resume from (none for kinds without checkpoints).
+template <class Body>
+nlohmann::json summarise_interruption(const std::string& kind, const nlohmann::json& resolved,
+                                      const RunOptions& opt, Body&& body) {
+  try {
+    return body();
+  } catch (const Interrupted& i) {
+    write_stopped_summary(opt.out_dir, kind, resolved, "interrupted",
+                          "signal " + std::to_string(i.signal), i.checkpoint, opt.threads);
+    throw;
+  }
 }
 
 }  // namespace geodem

@@ -1,14 +1,102 @@
 #include "lab/pullout_results.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 
 #include "io/output_files.hpp"
 #include "lab/anchorage_mechanism.hpp"
+#include "measure/measurements.hpp"
 
 namespace geodem {
 
-void pull_results(const Pull& u, const PulloutSettings& s, double macro_interface_deg,
-                  nlohmann::json& results) {
+namespace {
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kGravity = 9.81;
+constexpr std::size_t kBackWall = 2;  // in World::walls (floor, front, back)
+}  // namespace
+
+void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0, double top,
+                double sigma_q, double macro_interface_deg) {
+  using Vec = Dim<2>::Vec;
+  const auto& P = w.particles;
+  const std::size_t n = P.size();
+  const double x_end = s.anchor.runout_length + s.anchor.trench_width;
+  u.zone.assign(n, 0);
+  u.start.resize(n);
+  u.column.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec x = P.pos[i];
+    u.start[i] = x;
+    u.column[i] = std::clamp(static_cast<int>(x.x() / s.box_length * s.columns), 0, s.columns - 1);
+    const bool above = x.y() > y0;
+    const bool in_trench = overlaps_trench(s.anchor, y0, x, 0.0);
+    u.zone[i] = x.x() > 0.0 && x.x() < x_end && (above || in_trench) ? 1 : 0;
+  }
+  u.zone_count = 0;
+  for (char z : u.zone) u.zone_count += static_cast<std::uint64_t>(z);
+
+  // Unit weight of the cover where it is whole (next to the end of the run-out): solid
+  // area in the box x density x g over the box's area; and the load on the run-out: the
+  // weight of the soil above it plus the surcharge, for the analytic estimate.
+  const double L = s.anchor.runout_length;
+  Box<2> cover{Vec(std::max(0.0, L - 2.0 * s.anchor.cover), y0 + s.thickness),
+               Vec(L, y0 + s.anchor.cover)};
+  u.unit_weight = solid_volume_in_box(w, cover) / cover.volume() * s.soil.density * kGravity;
+  u.sigma_q = sigma_q;
+  u.runout_load = u.sigma_q * L;
+  for (std::size_t i = 0; i < n; ++i)
+    if (P.pos[i].y() > y0 && P.pos[i].x() > 0.0 && P.pos[i].x() < L)
+      u.runout_load += Dim<2>::volume(P.radius[i]) * s.soil.density * kGravity;
+  // The lateral stress the soil holds: on the smooth back wall, whose force balances
+  // K (q H + gamma H^2 / 2) over the soil's height H there.
+  const double H = top;
+  u.K_jaky = 1.0 - std::sin(s.soil_friction_deg * kDeg);
+  u.K_wall = w.walls[kBackWall].force.x() / (u.sigma_q * H + 0.5 * u.unit_weight * H * H);
+  const double K = s.earth_pressure_measured             ? u.K_wall
+                   : s.earth_pressure_coefficient >= 0.0 ? s.earth_pressure_coefficient
+                                                         : u.K_jaky;
+  u.est = slip_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(macro_interface_deg * kDeg), K,
+                        u.runout_load, s.interface_adhesion);
+  u.est_soil =
+      soil_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(s.soil_friction_deg * kDeg),
+                    s.soil_cohesion, K, u.runout_load);
+  // Next to the sheet: within a grain diameter of its faces.
+  u.near = grains_near_sheet(w, 2.0 * s.radius + 0.5 * s.thickness);
+  for (std::size_t i = 0; i < n; ++i) u.near[i] = u.near[i] && P.pos[i].x() > 0.0 ? 1 : 0;
+  u.node_start = w.spars.pos;
+}
+
+double anchoring_soil_displacement(const Pull& u, const World<2>& w, bool median,
+                                   std::vector<double>& scratch) {
+  const auto& P = w.particles;
+  scratch.clear();
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (u.zone[P.id[i]]) scratch.push_back(u.start[P.id[i]].x() - P.pos[i].x());
+  if (scratch.empty()) return 0.0;
+  if (median) {
+    std::nth_element(scratch.begin(), scratch.begin() + scratch.size() / 2, scratch.end());
+    return scratch[scratch.size() / 2];
+  }
+  double sum = 0.0;
+  for (double d : scratch) sum += d;
+  return sum / static_cast<double>(scratch.size());
+}
+
+void pull_results(const Pull& u, const World<2>& w, const PulloutSettings& s,
+                  double macro_interface_deg, nlohmann::json& results) {
+  std::vector<double> scratch;
+  const double soil_mean = anchoring_soil_displacement(u, w, false, scratch);
+  results["soil_displacement_mean"] = soil_mean;
+  results["soil_displacement_median"] = anchoring_soil_displacement(u, w, true, scratch);
+  results["soil_displacement_at_T_max"] = u.soil_at_max;
+  results["soil_displacement_ratio"] = soil_mean / s.max_displacement;
+  results["anchoring_zone_grains"] = u.zone_count;
+  results["sheet"] = {{"nodes", w.spars.nodes()}, {"elements", w.spars.elements()}};
+  results["pull_steps"] = w.step - u.pull_start;
+  results["dt"] = w.dt;
+  results["grains"] = w.particles.size();
   results["T_max"] = u.t_max;
   results["displacement_at_T_max"] = u.d_at_max;
   results["T_analytic_slip"] = u.est.tension;

@@ -47,9 +47,40 @@ struct Pull {
   }
 };
 
-// The estimates, the mechanism and the analytic terms of a finished pull, into `results`.
-void pull_results(const Pull& u, const PulloutSettings& s, double macro_interface_deg,
-                  nlohmann::json& results);
+// The columns of the pull-out's preparation.csv, history.csv and tension_profiles.csv.
+inline const std::vector<std::string> kPrepColumns = {
+    "stage", "step", "time", "grains", "surface", "unbalanced", "kinetic_energy"};
+inline const std::vector<std::string> kHistoryColumns = {"step",
+                                                         "time",
+                                                         "displacement",
+                                                         "tension",
+                                                         "tension_step",
+                                                         "soil_displacement",
+                                                         "soil_displacement_median",
+                                                         "kinetic_energy",
+                                                         "unbalanced",
+                                                         "sheet_contacts",
+                                                         "near_sheet_displacement",
+                                                         "sheet_displacement"};
+inline const std::vector<std::string> kProfileColumns = {"displacement", "s", "tension"};
+
+// The pull's state when the preparation ends (grain ids equal to their indices): the
+// anchoring zone, the grains' start positions and bands, the unit weight of the cover and
+// the load on the run-out, the earth pressure coefficients, both design estimates (with
+// the macroscopic interface friction) and the grains next to the sheet. `y0` is the
+// run-out level, `top` the cover's surface, `sigma_q` the surcharge.
+void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0, double top,
+                double sigma_q, double macro_interface_deg);
+
+// Displacement of the anchoring soil towards the pull: the mean, or the median (which
+// grains that roll off a free face far from the anchor do not pull up).
+double anchoring_soil_displacement(const Pull& u, const World<2>& w, bool median,
+                                   std::vector<double>& scratch);
+
+// The estimates, the mechanism, the analytic terms and the soil's displacement of a
+// finished pull, with the counts of the final world `w`, into `results`.
+void pull_results(const Pull& u, const World<2>& w, const PulloutSettings& s,
+                  double macro_interface_deg, nlohmann::json& results);
 
 // Grains (id, x, y, radius, column: the band each grain was in when the pull started) and
 // the sheet's nodes (with the tension of the element that starts there).

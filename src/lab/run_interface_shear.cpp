@@ -24,11 +24,14 @@
 #include "core/error.hpp"
 #include "core/random.hpp"
 #include "core/step.hpp"
+#include "core/world_state.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
+#include "lab/deposit_cache.hpp"
 #include "lab/interface_box.hpp"
 #include "lab/interface_parameters.hpp"
+#include "lab/lab_phases.hpp"
 #include "lab/sheet_inertia.hpp"
 #include "lab/soil_deposit.hpp"
 #include "lab/soil_editing.hpp"
@@ -139,10 +142,8 @@ struct InterfaceShear {
       settle(stage + " layer " + std::to_string(++layer), nullptr);
     }
     const auto& P = w.particles;
-    std::vector<char> above(P.size(), 0);
-    for (std::size_t i = 0; i < P.size(); ++i)
-      above[i] = P.pos[i].y() + P.radius[i] > height ? 1 : 0;
-    remove_grains(w, above);
+    remove_grains(
+        w, grains_where(w, [&](std::size_t i) { return P.pos[i].y() + P.radius[i] > height; }));
   }
 
   // The soil: on the rigid base; or a lower layer, held still while the sheet is laid on
@@ -163,20 +164,27 @@ struct InterfaceShear {
     w.rebuild_needed = true;
     deposit_layers(s.lower_height + box.thickness, s.lower_height + box.thickness + s.box_height,
                    "upper soil");
-    std::vector<char> held(P.size(), 0);
-    for (std::size_t i = 0; i < P.size(); ++i) held[i] = P.id[i] < lower ? 1 : 0;
-    hold_grains(w, held, false);
+    hold_grains(w, grains_where(w, [&](std::size_t i) { return P.id[i] < lower; }), false);
     settle("deposit", nullptr);
+  }
+
+  // The runner's part of a stored deposit (lab/deposit_cache.hpp): the random state and
+  // the step count.
+  template <class Archive>
+  void visit_deposit(Archive& a) {
+    std::string random = rng.state();
+    a(random), a(total_steps);
+    if (Archive::kLoading && !rng.set_state(random))
+      throw CheckpointError("unreadable random state");
   }
 
   // Weight of the soil above the sheet per metre of the box (Pa on the sheet).
   double weight_on_sheet() const {
     if (!soil_base()) return grains_weight(w) / s.box_length;
     World<2> upper = w;
-    std::vector<char> below(w.particles.size(), 0);
-    for (std::size_t i = 0; i < below.size(); ++i)
-      below[i] = w.particles.pos[i].y() < sheet_axis() ? 1 : 0;
-    remove_grains(upper, below);
+    remove_grains(upper, grains_where(w, [&](std::size_t i) {
+                    return w.particles.pos[i].y() < sheet_axis();
+                  }));
     return grains_weight(upper) / s.box_length;
   }
 
@@ -298,7 +306,20 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
   InterfaceShear run(s, opt);
   prepare_output_dir(opt.out_dir);
   run.build();
-  run.deposit_soil();
+  const DepositCache cache(s.deposit_cache, "interface_shear_deposit", s.resolved,
+                           {"shear.normal_stress", "output", "title", "seeds"});
+  std::string cache_use;
+  if (auto c = cache.load()) {
+    // The pulled sheet is laid before the world's state goes back onto it.
+    if (run.soil_base())
+      add_pulled_sheet(run.w, run.box, run.sheet_axis(), s.box_length - 2.0 * s.radius);
+    DepositCache::restore(*c, run.w, [&](StateReader& a) { run.visit_deposit(a); });
+    cache_use = "loaded " + cache.path();
+  } else {
+    run.deposit_soil();
+    cache.store(run.w, [&](StateWriter& a) { run.visit_deposit(a); });
+    if (cache.enabled()) cache_use = "stored " + cache.path();
+  }
   run.deposit = run.w;
   run.history.open(opt.out_dir + "/history.csv", history_columns());
   nlohmann::json tests = nlohmann::json::array();
@@ -323,6 +344,7 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
   results["residual_envelope"] = envelope_json(er);
   results["tests"] = tests;
   results["deposit_grains"] = run.deposit.particles.size();
+  if (!cache_use.empty()) results["deposit_cache"] = cache_use;
   results["bodies"] = body_count(run.deposit);
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -335,11 +357,8 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
 // written so far is whole); it is run again from the start (no checkpoints).
 nlohmann::json run_interface_shear(const InterfaceShearSettings& s, const RunOptions& opt) {
   try {
-    return run_tests(s, opt);
-  } catch (const Interrupted& i) {
-    write_stopped_summary(opt.out_dir, "interface_shear", s.resolved, "interrupted",
-                          "signal " + std::to_string(i.signal), "", opt.threads);
-    throw;
+    return summarise_interruption("interface_shear", s.resolved, opt,
+                                  [&] { return run_tests(s, opt); });
   } catch (const InstabilityError& e) {
     write_stopped_summary(opt.out_dir, "interface_shear", s.resolved, "unstable", e.what(), "",
                           opt.threads);

@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <functional>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
@@ -29,6 +28,7 @@
 #include "io/run_checkpoints.hpp"
 #include "lab/anchorage.hpp"
 #include "lab/anchorage_mechanism.hpp"
+#include "lab/deposit_cache.hpp"
 #include "lab/lab_phases.hpp"
 #include "lab/pullout_results.hpp"
 #include "lab/sheet_inertia.hpp"
@@ -42,9 +42,8 @@ namespace {
 
 using Vec = Dim<2>::Vec;
 constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kGravity = 9.81;
 enum : std::uint16_t { kSoil = kDepositSoil, kWalls = kDepositWalls, kSheet = kDepositSheet };
-constexpr std::size_t kFrontWall = 1, kBackWall = 2;  // in World::walls (floor, front, back)
+constexpr std::size_t kFrontWall = 1;  // in World::walls (floor, front, back)
 
 // The stages of the test, in order. A checkpoint records the stage and the loop
 // counters within it; the run goes on from there on resuming.
@@ -72,6 +71,8 @@ struct Pullout {
   HistoryCsv prep_csv, history, profiles;
   VtkSeries<2> vtk;
   RunCheckpoints checkpoints;
+  DepositCache deposit_cache;   // the foundation's deposit, shared with other runs
+  bool deposit_loaded = false;  // this run's foundation came from the cache
   std::shared_ptr<SurfacePressure<2>> surcharge;
   std::vector<double> moved;  // scratch of soil_displacement()
 
@@ -92,9 +93,13 @@ struct Pullout {
         progress(options.quiet),
         rng(settings.seed),
         vtk(options.out_dir),
-        checkpoints("pullout", 2, settings.resolved, options.out_dir, settings.checkpoint) {}
+        checkpoints("pullout", 2, settings.resolved, options.out_dir, settings.checkpoint),
+        deposit_cache(settings.deposit_cache, "pullout_foundation", settings.resolved,
+                      {"anchor", "sheet", "surcharge", "pull", "analytic", "output", "refinement",
+                       "checkpoint", "seeds", "title"}) {}
 
   double elapsed() const { return checkpoints.elapsed(); }
+  std::string prep_path() const { return opt.out_dir + "/preparation.csv"; }
   // The interface friction of the slippage estimate: the macroscopic one when given.
   double macro_interface_deg() const {
     return s.interface_macro_friction_deg >= 0.0 ? s.interface_macro_friction_deg
@@ -152,29 +157,17 @@ struct Pullout {
     top = y0 + s.anchor.cover;
   }
 
-  static std::vector<std::string> prep_columns() {
-    return {"stage", "step", "time", "grains", "surface", "unbalanced", "kinetic_energy"};
-  }
-  static std::vector<std::string> history_columns() {
-    return {"step",
-            "time",
-            "displacement",
-            "tension",
-            "tension_step",
-            "soil_displacement",
-            "soil_displacement_median",
-            "kinetic_energy",
-            "unbalanced",
-            "sheet_contacts",
-            "near_sheet_displacement",
-            "sheet_displacement"};
-  }
-  static std::vector<std::string> profile_columns() { return {"displacement", "s", "tension"}; }
-
   void start() {
     prepare_output_dir(opt.out_dir);
-    prep_csv.open(opt.out_dir + "/preparation.csv", prep_columns());
+    prep_csv.open(prep_path(), kPrepColumns);
     phase = Phase::kFoundation;
+    if (auto c = deposit_cache.load()) {
+      // The foundation as the cache holds it; the run goes on from the end of its deposit.
+      DepositCache::restore(
+          *c, w, [&](StateReader& a) { visit_state(a); }, prep_path(), &prep_csv, kPrepColumns);
+      deposit_loaded = true;
+      prep["deposit_cache"] = "loaded " + deposit_cache.path();
+    }
   }
 
   // Rebuilt from the scenario (build()), then the newest valid checkpoint's state: the
@@ -191,28 +184,15 @@ struct Pullout {
     if (phase >= Phase::kConsolidation && s.surcharge > 0.0) add_surcharge_plate();
     StateReader win(c.world.data(), c.world.size());
     load_world_state(win, w);
-    prep_csv.resume_rows(opt.out_dir + "/preparation.csv", prep_columns(), rows[0]);
+    prep_csv.resume_rows(prep_path(), kPrepColumns, rows[0]);
     if (phase == Phase::kPull) {
-      history.resume_rows(opt.out_dir + "/history.csv", history_columns(), rows[1]);
-      profiles.resume_rows(opt.out_dir + "/tension_profiles.csv", profile_columns(), rows[2]);
+      history.resume_rows(opt.out_dir + "/history.csv", kHistoryColumns, rows[1]);
+      profiles.resume_rows(opt.out_dir + "/tension_profiles.csv", kProfileColumns, rows[2]);
     }
     checkpoints.resume_clock(wall_before);
   }
 
-  // Median over columns of [x0, x1] of the highest grain top: the free surface's level.
-  double surface(double x0, double x1) const {
-    constexpr int kCols = 12;
-    std::vector<double> col_top(kCols, 0.0);
-    for (std::size_t i = 0; i < w.particles.size(); ++i) {
-      const double x = w.particles.pos[i].x();
-      if (x < x0 || x > x1) continue;
-      const auto c = static_cast<std::size_t>(
-          std::clamp(static_cast<int>((x - x0) / (x1 - x0) * kCols), 0, kCols - 1));
-      col_top[c] = std::max(col_top[c], w.particles.pos[i].y() + w.particles.radius[i]);
-    }
-    std::nth_element(col_top.begin(), col_top.begin() + kCols / 2, col_top.end());
-    return col_top[kCols / 2];
-  }
+  double surface(double x0, double x1) const { return surface_level(w, x0, x1); }
 
   void prep_row(double stage, double unb) {
     prep_csv.row({stage, static_cast<double>(w.step), w.time,
@@ -268,12 +248,6 @@ struct Pullout {
     layer = 0;
   }
 
-  std::vector<char> select(const std::function<bool(std::size_t)>& pred) const {
-    std::vector<char> m(w.particles.size(), 0);
-    for (std::size_t i = 0; i < m.size(); ++i) m[i] = pred(i) ? 1 : 0;
-    return m;
-  }
-
   // The sheet, its axis half a thickness above the foundation's top.
   void lay_sheet() {
     const auto corners = sheet_corners(s.anchor, y0 + 0.5 * s.thickness);
@@ -288,9 +262,16 @@ struct Pullout {
   // open).
   void foundation_phase() {
     const auto& P = w.particles;
-    deposit_to(y0 + 2.0 * s.radius, 0.0, s.box_length, "foundation", 1);
+    if (!deposit_loaded) {
+      deposit_to(y0 + 2.0 * s.radius, 0.0, s.box_length, "foundation", 1);
+      if (deposit_cache.enabled()) {
+        deposit_cache.store(
+            w, [&](StateWriter& a) { visit_state(a); }, prep_path(), &prep_csv);
+        prep["deposit_cache"] = "stored " + deposit_cache.path();
+      }
+    }
     const double t = s.thickness;
-    remove_grains(w, select([&](std::size_t i) {
+    remove_grains(w, grains_where(w, [&](std::size_t i) {
                     return P.pos[i].y() + P.radius[i] > y0 ||
                            overlaps_trench(s.anchor, y0, P.pos[i], P.radius[i] + t);
                   }));
@@ -310,10 +291,10 @@ struct Pullout {
     const auto& P = w.particles;
     // Renumbering moved the held grains: find them by id (new grains have larger ids).
     auto is_foundation = [&](std::size_t i) { return P.id[i] < foundation; };
-    remove_grains(w, select([&](std::size_t i) {
+    remove_grains(w, grains_where(w, [&](std::size_t i) {
                     return !is_foundation(i) && P.pos[i].y() + P.radius[i] > top;
                   }));
-    hold_grains(w, select(is_foundation), false);
+    hold_grains(w, grains_where(w, is_foundation), false);
     prep["fill_grains"] = P.size() - foundation;
     if (s.anchor.front == "free") {
       // The front wall now holds the foundation only: the cover's face is free.
@@ -334,7 +315,7 @@ struct Pullout {
       // Grains that fell off the free face are no longer part of the anchorage.
       const auto& P = w.particles;
       const std::size_t spilled =
-          remove_grains(w, select([&](std::size_t i) { return P.pos[i].x() < 0.0; }));
+          remove_grains(w, grains_where(w, [&](std::size_t i) { return P.pos[i].x() < 0.0; }));
       prep["spilled_grains"] = spilled;
       if (spilled > 0) {
         phase = Phase::kSpillSettle;
@@ -370,23 +351,6 @@ struct Pullout {
     w.controllers = {surcharge};
   }
 
-  // Displacement of the anchoring soil towards the pull: the mean, and the median (which
-  // grains that roll off a free face far from the anchor do not pull up).
-  double soil_displacement(bool median = false) {
-    const auto& P = w.particles;
-    moved.clear();
-    for (std::size_t i = 0; i < P.size(); ++i)
-      if (pull.zone[P.id[i]]) moved.push_back(pull.start[P.id[i]].x() - P.pos[i].x());
-    if (moved.empty()) return 0.0;
-    if (median) {
-      std::nth_element(moved.begin(), moved.begin() + moved.size() / 2, moved.end());
-      return moved[moved.size() / 2];
-    }
-    double sum = 0.0;
-    for (double d : moved) sum += d;
-    return sum / static_cast<double>(moved.size());
-  }
-
   // End of the preparation: the anchoring zone, the analytic estimate, the initial
   // states, the output files of the pull; the clamp starts moving.
   void begin_pull() {
@@ -397,60 +361,13 @@ struct Pullout {
     prep["steps"] = w.step;
     prep["time"] = w.time;
     Pull& u = pull;
-    const std::size_t n = P.size();
-    for (std::size_t i = 0; i < n; ++i) P.id[i] = static_cast<std::uint32_t>(i);
-    const double x_end = s.anchor.runout_length + s.anchor.trench_width;
-    u.zone.assign(n, 0);
-    u.start.resize(n);
-    u.column.assign(n, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec x = P.pos[i];
-      u.start[i] = x;
-      u.column[i] =
-          std::clamp(static_cast<int>(x.x() / s.box_length * s.columns), 0, s.columns - 1);
-      const bool above = x.y() > y0;
-      const bool in_trench = overlaps_trench(s.anchor, y0, x, 0.0);
-      u.zone[i] = x.x() > 0.0 && x.x() < x_end && (above || in_trench) ? 1 : 0;
-    }
-    u.zone_count = 0;
-    for (char z : u.zone) u.zone_count += static_cast<std::uint64_t>(z);
-
-    // Unit weight of the cover where it is whole (next to the end of the run-out): solid
-    // area in the box x density x g over the box's area; and the load on the run-out: the
-    // weight of the soil above it plus the surcharge, for the analytic estimate.
-    const double L = s.anchor.runout_length;
-    Box<2> cover{Vec(std::max(0.0, L - 2.0 * s.anchor.cover), y0 + s.thickness),
-                 Vec(L, y0 + s.anchor.cover)};
-    u.unit_weight = solid_volume_in_box(w, cover) / cover.volume() * s.soil.density * kGravity;
-    u.sigma_q = surcharge ? surcharge->pressure(w) : 0.0;
-    u.runout_load = u.sigma_q * L;
-    for (std::size_t i = 0; i < n; ++i)
-      if (P.pos[i].y() > y0 && P.pos[i].x() > 0.0 && P.pos[i].x() < L)
-        u.runout_load += Dim<2>::volume(P.radius[i]) * s.soil.density * kGravity;
-    // The lateral stress the soil holds: on the smooth back wall, whose force balances
-    // K (q H + gamma H^2 / 2) over the soil's height H there.
-    const double H = top;
-    u.K_jaky = 1.0 - std::sin(s.soil_friction_deg * kDeg);
-    u.K_wall = w.walls[kBackWall].force.x() / (u.sigma_q * H + 0.5 * u.unit_weight * H * H);
-    const double K = s.earth_pressure_measured             ? u.K_wall
-                     : s.earth_pressure_coefficient >= 0.0 ? s.earth_pressure_coefficient
-                                                           : u.K_jaky;
-    u.est =
-        slip_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(macro_interface_deg() * kDeg), K,
-                      u.runout_load, s.interface_adhesion);
-    u.est_soil =
-        soil_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(s.soil_friction_deg * kDeg),
-                      s.soil_cohesion, K, u.runout_load);
-    // Next to the sheet: within a grain diameter of its faces.
-    u.near = grains_near_sheet(w, 2.0 * s.radius + 0.5 * s.thickness);
-    for (std::size_t i = 0; i < n; ++i) u.near[i] = u.near[i] && P.pos[i].x() > 0.0 ? 1 : 0;
-    u.node_start = S.pos;
-
+    for (std::size_t i = 0; i < P.size(); ++i) P.id[i] = static_cast<std::uint32_t>(i);
+    start_pull(u, w, s, y0, top, surcharge ? surcharge->pressure(w) : 0.0, macro_interface_deg());
     write_pullout_states(opt.out_dir + "/states/grains_initial.csv",
                          opt.out_dir + "/states/sheet_initial.csv", w, u.column);
     if (s.vtk) vtk.write(w);
-    history.open(opt.out_dir + "/history.csv", history_columns());
-    profiles.open(opt.out_dir + "/tension_profiles.csv", profile_columns());
+    history.open(opt.out_dir + "/history.csv", kHistoryColumns);
+    profiles.open(opt.out_dir + "/tension_profiles.csv", kProfileColumns);
     u.profile_at = s.profiles_at;
     std::sort(u.profile_at.begin(), u.profile_at.end(), std::greater<>());
     w.local_damping = s.pull_damping;
@@ -483,7 +400,8 @@ struct Pullout {
         // The tension of a row is its mean over the steps since the previous row: the
         // per-step value carries the sheet's own vibrations.
         const double T = u.tension_sum / static_cast<double>(u.tension_steps);
-        const double soil = soil_displacement(), median = soil_displacement(true);
+        const double soil = anchoring_soil_displacement(u, w, false, moved),
+                     median = anchoring_soil_displacement(u, w, true, moved);
         const double near = mean_grain_displacement(w, u.near, u.start);
         const double nodes = mean_embedded_node_displacement(w, u.node_start);
         history.row({static_cast<double>(w.step), w.time, u.displacement, T, S.tension[0], soil,
@@ -564,32 +482,16 @@ nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt)
 
   nlohmann::json results;
   results["preparation"] = run.prep;
-  pull_results(u, s, run.macro_interface_deg(), results);
-  const double soil_mean = run.soil_displacement();
-  results["soil_displacement_mean"] = soil_mean;
-  results["soil_displacement_median"] = run.soil_displacement(true);
-  results["soil_displacement_at_T_max"] = u.soil_at_max;
-  results["soil_displacement_ratio"] = soil_mean / s.max_displacement;
-  results["anchoring_zone_grains"] = u.zone_count;
-  const auto& S = w.spars;
-  results["sheet"] = {
-      {"nodes", S.nodes()}, {"elements", S.elements()}, {"node_mass_factor", run.node_mass_factor}};
-  results["pull_steps"] = w.step - u.pull_start;
-  results["dt"] = w.dt;
-  results["grains"] = w.particles.size();
+  pull_results(u, w, s, run.macro_interface_deg(), results);
+  results["sheet"]["node_mass_factor"] = run.node_mass_factor;
   return write_run_summary(opt.out_dir, "pullout", "completed", s.resolved, results,
                            timing_json(w, run.elapsed(), run.total_steps, opt.threads));
 }
 }  // namespace
 
 nlohmann::json run_pullout(const PulloutSettings& s, const RunOptions& opt) {
-  try {
-    return run_pullout_test(s, opt);
-  } catch (const Interrupted& i) {
-    write_stopped_summary(opt.out_dir, "pullout", s.resolved, "interrupted",
-                          "signal " + std::to_string(i.signal), i.checkpoint, opt.threads);
-    throw;
-  }
+  return summarise_interruption("pullout", s.resolved, opt,
+                                [&] { return run_pullout_test(s, opt); });
 }
 
 }  // namespace geodem

@@ -557,13 +557,9 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
 }  // namespace
 
 nlohmann::json run_triaxial(const TriaxialSettings& settings, const RunOptions& options) {
-  try {
+  return summarise_interruption("triaxial", settings.resolved, options, [&] {
     return settings.dimension == 2 ? run<2>(settings, options) : run<3>(settings, options);
-  } catch (const Interrupted& i) {
-    write_stopped_summary(options.out_dir, "triaxial", settings.resolved, "interrupted",
-                          "signal " + std::to_string(i.signal), i.checkpoint, options.threads);
-    throw;
-  }
+  });
 }
 
 }  // namespace geodem

@@ -70,6 +70,22 @@ inline double top_of_grains(const World<2>& w) {
   return t;
 }
 
+// Median over 12 columns of [x0, x1] of the highest grain top: the free surface's level
+// (a grain bouncing above it does not raise it).
+inline double surface_level(const World<2>& w, double x0, double x1) {
+  constexpr int kCols = 12;
+  std::vector<double> col_top(kCols, 0.0);
+  for (std::size_t i = 0; i < w.particles.size(); ++i) {
+    const double x = w.particles.pos[i].x();
+    if (x < x0 || x > x1) continue;
+    const auto c = static_cast<std::size_t>(
+        std::clamp(static_cast<int>((x - x0) / (x1 - x0) * kCols), 0, kCols - 1));
+    col_top[c] = std::max(col_top[c], w.particles.pos[i].y() + w.particles.radius[i]);
+  }
+  std::nth_element(col_top.begin(), col_top.begin() + kCols / 2, col_top.end());
+  return col_top[kCols / 2];
+}
+
 // A soil still falling or flowing: kinetic energy above a tenth of the energy of every
 // grain dropping by its own radius, sum(rho pi r^2 g r) (a soil at rest holds 1e-4 of it or
 // less). The unbalanced force ratio alone can be small in a falling cloud whose few
@@ -110,12 +126,19 @@ inline void drop_layer(World<2>& w, const DepositedSoil& s, const std::string& f
   using Vec = Dim<2>::Vec;
   const auto count =
       static_cast<std::size_t>(std::ceil((1.0 - kDensePorosity) * (x1 - x0) * dense / areas.mean));
-  const double loose = dense * (1.0 - kDensePorosity) * areas.bound_ratio / kLooseFill;
-  try {
-    add_random_grains<2>(w, kinds, Vec(x0, base), Vec(x1, base + loose), count, 1.0 - kLooseFill,
-                         s.radius_fuzz, s.soil.density, kDepositSoil, rng, Vec::Zero(), s.radius);
-  } catch (const std::runtime_error& e) {
-    throw InputError(file, 0, "soil.layer_thickness", e.what());
+  double loose = dense * (1.0 - kDensePorosity) * areas.bound_ratio / kLooseFill;
+  // A thin last layer (a few grains into a gap narrower than a clump) may find no room at
+  // its loose height: the cloud is dropped from higher up, twice as high each try (a
+  // failed try places nothing, so a layer that fits at once is as before).
+  for (int attempt = 0;; ++attempt) {
+    try {
+      add_random_grains<2>(w, kinds, Vec(x0, base), Vec(x1, base + loose), count, 1.0 - kLooseFill,
+                           s.radius_fuzz, s.soil.density, kDepositSoil, rng, Vec::Zero(), s.radius);
+      break;
+    } catch (const std::runtime_error& e) {
+      if (attempt == 3) throw InputError(file, 0, "soil.layer_thickness", e.what());
+      loose *= 2.0;
+    }
   }
   w.rebuild_needed = true;
 }

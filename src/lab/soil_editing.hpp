@@ -1,6 +1,6 @@
 // Editing a deposited soil: excavating (removing grains and whole clumps) and holding
 // part of it still while the rest is built (a trench face that stands while it is
-// filled). Used by the pull-out builder.
+// filled). Used by the pull-out and interface shear builders.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +9,14 @@
 #include "core/world.hpp"
 
 namespace geodem {
+
+// A mask of the grains i for which pred(i) holds.
+template <int D, class Pred>
+std::vector<char> grains_where(const World<D>& w, Pred&& pred) {
+  std::vector<char> m(w.particles.size(), 0);
+  for (std::size_t i = 0; i < m.size(); ++i) m[i] = pred(i) ? 1 : 0;
+  return m;
+}
 
 // Removes every grain with remove[i] set, and whole clumps with any member removed.
 // The neighbour list starts afresh. Returns the number of grains removed.

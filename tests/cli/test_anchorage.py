@@ -105,6 +105,39 @@ class AnchorageTest(unittest.TestCase):
             self.assertGreater(t["peak_shear_stress"], 0.0)
         self.assertTrue(res["peak_envelope"]["fitted"])
 
+    def test_deposit_cache_gives_the_runs_bit_for_bit(self):
+        # A deposit stored by one run and loaded by the next (and by a run of other normal
+        # stresses): every output as without the cache. A damaged file is a miss.
+        def go(name, text, cache=True):
+            out = self.dir / name
+            args = ["--set", f"soil.deposit_cache={self.dir / 'cache'}"] if cache else []
+            r = run("run", self.write(text, name + ".toml"), "--out", str(out), "--quiet", *args)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            return out, json.loads((out / "summary.json").read_text())["results"], r.stderr
+
+        base = shear(base="soil")
+        plain, res_plain, _ = go("plain", base, cache=False)
+        stored, res_stored, _ = go("stored", base)
+        loaded, res_loaded, _ = go("loaded", base)
+        self.assertTrue(res_stored["deposit_cache"].startswith("stored "))
+        self.assertTrue(res_loaded["deposit_cache"].startswith("loaded "))
+        for out in (stored, loaded):
+            self.assertEqual((out / "history.csv").read_bytes(),
+                             (plain / "history.csv").read_bytes())
+        other = base.replace("[10e3, 20e3]", "[15e3]")
+        _, res_other, _ = go("other", other)
+        _, res_other_plain, _ = go("other_plain", other, cache=False)
+        self.assertTrue(res_other["deposit_cache"].startswith("loaded "))
+        self.assertEqual(res_other["tests"], res_other_plain["tests"])
+        cached = list((self.dir / "cache").glob("*.bin"))
+        self.assertEqual(len(cached), 1)
+        cached[0].write_bytes(cached[0].read_bytes()[:100])
+        damaged, res_damaged, err = go("damaged", base)
+        self.assertIn("unusable", err)
+        self.assertTrue(res_damaged["deposit_cache"].startswith("stored "))
+        self.assertEqual((damaged / "history.csv").read_bytes(),
+                         (plain / "history.csv").read_bytes())
+
     def test_input_errors(self):
         for text, key, fragment in (
                 (shear().replace("height = 0.05", "height = 0.01"), "box", "3 grains"),

@@ -321,6 +321,43 @@ create = "initial"
         (self.dir / "grains.txt").write_text("1 0.05 0.05 oops\n")
         self.assertBadInput(text, "grains.txt:1", "oops")
 
+    def test_pullout_deposit_cache_gives_the_runs_bit_for_bit(self):
+        # The foundation stored by one run and loaded by the next, and by a run of another
+        # anchor on the same foundation: every output as without the cache; another grain
+        # size deposits its own.
+        text = SMALL_PULLOUT.format(shape="L", trench="trench_depth = 0.05")
+        text = text.replace("max_displacement = 0.03", "max_displacement = 0.01")
+        text += "[output]\nplots = false\n"
+        scenario = self.write(text)
+        cache = f"soil.deposit_cache={self.dir / 'cache'}"
+
+        def go(name, *extra):
+            out = self.dir / name
+            r = run("run", scenario, "--out", str(out), "--quiet", *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            return out, json.loads((out / "summary.json").read_text())["results"]
+
+        def same(a, b):
+            for f in ("history.csv", "preparation.csv", "tension_profiles.csv",
+                      "states/grains_final.csv", "states/sheet_final.csv"):
+                self.assertEqual((a / f).read_bytes(), (b / f).read_bytes(), f)
+
+        plain, res = go("plain")
+        stored, res_stored = go("stored", "--set", cache)
+        loaded, res_loaded = go("loaded", "--set", cache)
+        self.assertTrue(res_stored["preparation"]["deposit_cache"].startswith("stored "))
+        self.assertTrue(res_loaded["preparation"]["deposit_cache"].startswith("loaded "))
+        same(plain, stored)
+        same(plain, loaded)
+        self.assertEqual(res_loaded["T_max"], res["T_max"])
+        other = ("--set", "anchor.runout_length=0.4", "--set", "anchor.trench_depth=0.07")
+        other_cached, res_other = go("other_cached", *other, "--set", cache)
+        self.assertTrue(res_other["preparation"]["deposit_cache"].startswith("loaded "))
+        same(go("other_plain", *other)[0], other_cached)
+        _, res_fine = go("fine", "--set", "soil.radius=0.009", "--set", cache)
+        self.assertTrue(res_fine["preparation"]["deposit_cache"].startswith("stored "))
+        self.assertEqual(len(list((self.dir / "cache").glob("pullout_foundation_*.bin"))), 2)
+
     def test_pullout_runout_against_the_slippage_estimate(self):
         out = self.dir / "out"
         r = run("run", self.write(SMALL_PULLOUT.format(shape="runout", trench="")),
