@@ -29,7 +29,7 @@ def run_case(geodem, folder, scenario_text):
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "scenario.toml").write_text(scenario_text)
     proc = subprocess.run([geodem, "run", str(folder / "scenario.toml"), "--out",
-                           str(folder / "out"), "--quiet"], capture_output=True, text=True)
+                           str(folder / "out"), "--overwrite", "--quiet"], capture_output=True, text=True)
     if proc.returncode != 0:
         raise SystemExit(f"{folder}: geodem failed ({proc.returncode}):\n{proc.stderr}")
     return json.loads(summary.read_text())

@@ -6,5 +6,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
-./build/geodem run examples/triaxial3d/scenario.toml --out out/triaxial3d
+./build/geodem run examples/triaxial3d/scenario.toml --out out/triaxial3d --overwrite
 echo "outputs: $(pwd)/out/triaxial3d (summary.json, history.csv, preparation.csv, vtk/particles.pvd, stress_strain.png)"

@@ -36,29 +36,43 @@ Loaded load(const std::string& file, const std::vector<std::string>& overrides) 
 int run_main(int argc, char** argv);
 
 // Studies: their runs go to `--threads` workers on each MPI rank; rank 0 reports.
+// A new run's output folder (io/run_output.hpp, claim_output_dir): rank 0 decides (and
+// empties the folder on --overwrite) before any rank writes into it.
+void claim_output(const geodem::RunOptions& opt, bool overwrite) {
+  if (opt.resume) return;
+  std::string refusal;
+  if (geodem::comm::rank() == 0) refusal = geodem::claim_output_dir(opt.out_dir, overwrite);
+  if (geodem::comm::size() > 1) refusal = geodem::comm::all_gather(refusal)[0];
+  if (!refusal.empty()) throw geodem::InputError("", 0, "--out", refusal);
+}
+
 int run_study(const Loaded& l, const std::string& file, bool check_only,
-              const geodem::RunOptions& opt) {
+              const geodem::RunOptions& opt, bool overwrite) {
   nlohmann::json summary;
   bool plots = true;
   if (l.kind == "series") {
     const auto s = geodem::read_series(l.root, file);
     if (check_only) return std::printf("%s: ok (kind = \"series\")\n", file.c_str()), kOk;
+    claim_output(opt, overwrite);
     summary = geodem::run_series(s, opt);
     plots = s.study.plots;
   } else if (l.kind == "rate_study") {
     const auto s = geodem::read_rate_study(l.root, file);
     if (check_only) return std::printf("%s: ok (kind = \"rate_study\")\n", file.c_str()), kOk;
+    claim_output(opt, overwrite);
     summary = geodem::run_rate_study(s, opt);
     plots = s.study.plots;
   } else if (geodem::is_interface_calibration(l.root)) {
     const auto s = geodem::read_interface_calibrate(l.root, file);
     if (check_only)
       return std::printf("%s: ok (kind = \"calibrate\", interface)\n", file.c_str()), kOk;
+    claim_output(opt, overwrite);
     summary = geodem::run_interface_calibrate(s, opt);
     plots = s.plots;
   } else {
     const auto s = geodem::read_calibrate(l.root, file);
     if (check_only) return std::printf("%s: ok (kind = \"calibrate\")\n", file.c_str()), kOk;
+    claim_output(opt, overwrite);
     summary = geodem::run_calibrate(s, opt);
     plots = s.study.plots;
   }
@@ -110,7 +124,7 @@ int run_main(int argc, char** argv) {
   std::string scenario, out_dir = "out", plot_dir, resume_dir;
   std::vector<std::string> overrides;
   int threads = geodem::default_threads();
-  bool quiet = false;
+  bool quiet = false, overwrite = false;
 
   auto* run = app.add_subcommand("run", "run a scenario");
   run->add_option("scenario", scenario, "scenario file (TOML)")->required();
@@ -122,9 +136,13 @@ int run_main(int argc, char** argv) {
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
   run->add_flag("--quiet", quiet, "no progress display");
+  run->add_flag("--overwrite", overwrite,
+                "replace the earlier run in --out (its files are deleted first); without it a "
+                "folder that holds files is refused");
   run->add_option("--resume", resume_dir,
                   "continue the run whose output folder is DIR from its newest valid checkpoint "
-                  "(scene, triaxial, pullout; outputs stay in DIR)");
+                  "(scene, triaxial, pullout; outputs stay in DIR); a study: rerun its "
+                  "unfinished runs, keeping the finished ones");
 
   auto* check = app.add_subcommand("check", "validate a scenario without running it");
   check->add_option("scenario", scenario, "scenario file (TOML)")->required();
@@ -158,16 +176,19 @@ int run_main(int argc, char** argv) {
       if (run->count("--out") && out_dir != resume_dir)
         throw geodem::InputError("", 0, "--out",
                                  "a resumed run writes to its own folder; give --resume DIR alone");
-      if (l.kind != "scene" && l.kind != "triaxial" && l.kind != "pullout")
+      if (overwrite)
+        throw geodem::InputError("", 0, "--overwrite",
+                                 "--resume continues the run in its folder; --overwrite would "
+                                 "delete it: give one of them");
+      if (l.kind == "interface_shear")
         throw geodem::InputError(scenario, 0, "kind",
-                                 "--resume: a study resumes by rerunning it into the same "
-                                 "folder: its finished runs are kept, and with [checkpoint] its "
-                                 "unfinished ones continue from their checkpoints");
+                                 "an interface shear test writes no checkpoints: run it again "
+                                 "with --out DIR --overwrite");
       opt.out_dir = out_dir = resume_dir;
       opt.resume = true;
     }
     if (l.kind == "series" || l.kind == "rate_study" || l.kind == "calibrate")
-      return run_study(l, scenario, check->parsed(), opt);
+      return run_study(l, scenario, check->parsed(), opt, overwrite);
     // A pull-out over seeds or grain sizes runs its runs as a study does.
     const bool pullout_series =
         l.kind == "pullout" && (l.root["seeds"].value_or(1LL) > 1 || l.root.contains("refinement"));
@@ -185,6 +206,7 @@ int run_main(int argc, char** argv) {
         std::printf("%s: ok (kind = \"triaxial\", dimension %d)\n", scenario.c_str(), t.dimension);
         return kOk;
       }
+      claim_output(opt, overwrite);
       geodem::run_triaxial(t, opt);
       if (t.plots) geodem::make_plots(out_dir, quiet);
       if (!quiet) std::fprintf(stderr, "done: outputs in %s\n", out_dir.c_str());
@@ -198,10 +220,7 @@ int run_main(int argc, char** argv) {
         return kOk;
       }
       if (p.seeds > 1 || !p.radius_factors.empty()) {
-        if (opt.resume)
-          throw geodem::InputError(scenario, 0, "seeds",
-                                   "a pull-out over several seeds resumes by rerunning it into "
-                                   "the same folder (its finished runs are kept)");
+        claim_output(opt, overwrite);  // a resumed series keeps its finished runs
         const auto summary = geodem::run_pullout_series(l.root, p, opt);
         if (geodem::comm::rank() != 0) return kOk;
         if (p.plots) geodem::make_plots(out_dir, quiet);
@@ -211,6 +230,7 @@ int run_main(int argc, char** argv) {
                        t["mean"].get<double>(), p.seeds, t["cv"].get<double>(), out_dir.c_str());
         return summary["results"]["failed_runs"].empty() ? kOk : kFailure;
       }
+      claim_output(opt, overwrite);
       const auto summary = geodem::run_pullout(p, opt);
       if (p.plots) geodem::make_plots(out_dir, quiet);
       if (!quiet)
@@ -230,6 +250,7 @@ int run_main(int argc, char** argv) {
                     p.normal_stress.size());
         return kOk;
       }
+      claim_output(opt, overwrite);
       const auto summary = geodem::run_interface_shear(p, opt);
       if (p.plots) geodem::make_plots(out_dir, quiet);
       if (!quiet)
@@ -255,6 +276,7 @@ int run_main(int argc, char** argv) {
                   s.dimension);
       return kOk;
     }
+    claim_output(opt, overwrite);
     const auto summary = geodem::run_scene(s, opt);
     if (s.output.plots) geodem::make_plots(out_dir, quiet);
     if (!quiet)

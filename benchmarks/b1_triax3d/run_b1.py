@@ -55,7 +55,7 @@ def run_geodem(exe, n, seed, d, reuse, dry):
         if dry:
             return None
         d.mkdir(parents=True, exist_ok=True)
-        time_v([str(exe), "run", str(HERE / "geodem_b1.toml"), "--out", str(d / "run"), "--quiet",
+        time_v([str(exe), "run", str(HERE / "geodem_b1.toml"), "--out", str(d / "run"), "--overwrite", "--quiet",
                 "--threads", "1", "--set", f"sample.count={n}", "--set", f"seed={seed}"], log)
         (d / "summary.json").write_text((d / "run" / "summary.json").read_text())
     wall, rss = parse_time_v(log.read_text(errors="replace"))

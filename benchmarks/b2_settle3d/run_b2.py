@@ -40,7 +40,7 @@ def run_geodem(exe, n, dim, out, settle, dense, threads=1):
     subprocess.run([sys.executable, str(HERE / "geodem_scenario.py"), str(n), str(out), "--dim", str(dim),
                     "--settle", str(settle), "--dense", str(dense)], check=True)
     res = out / f"geodem{dim}d_t{threads}"
-    wall, rss, _ = time_v([str(exe), "run", str(out / f"settle{dim}d.toml"), "--out", str(res), "--quiet",
+    wall, rss, _ = time_v([str(exe), "run", str(out / f"settle{dim}d.toml"), "--out", str(res), "--overwrite", "--quiet",
                            "--threads", str(threads)])
     rows = list(csv.DictReader(open(res / "history.csv")))
     at = {int(r["step"]): r for r in rows}

@@ -20,7 +20,7 @@ GEODEM = HERE.parent.parent / "build" / "geodem"
 def timed_run(scenario, out):
     out.mkdir(parents=True, exist_ok=True)
     proc = subprocess.run(["/usr/bin/time", "-v", str(GEODEM), "run", str(scenario), "--out",
-                           str(out / "run"), "--quiet"], capture_output=True, text=True)
+                           str(out / "run"), "--overwrite", "--quiet"], capture_output=True, text=True)
     if proc.returncode != 0:
         raise SystemExit(proc.stderr)
     rss_kb = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", proc.stderr).group(1))

@@ -28,7 +28,7 @@ def run(case):
     run_dir = out / f"{soil}_{base}_d{delta:g}_s{seed}"
     if not (run_dir / "summary.json").is_file():
         subprocess.run([str(ROOT / "build" / "geodem"), "run", str(HERE / f"{soil}.toml"),
-                        "--out", str(run_dir), "--quiet", "--threads", "1",
+                        "--out", str(run_dir), "--overwrite", "--quiet", "--threads", "1",
                         "--set", f"sheet.interface_friction_deg={delta}",
                         "--set", f"seed={seed}", "--set", f'box.base="{base}"',
                         "--set", "output.vtk=false", "--set", "output.plots=false"],

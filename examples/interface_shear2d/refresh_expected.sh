@@ -13,11 +13,11 @@ OUT=${1:-runs/interface_shear2d}
 EXPECTED=examples/interface_shear2d/expected
 mkdir -p "$OUT" "$EXPECTED"
 for soil in sand silt; do
-  ./build/geodem run "examples/interface_shear2d/$soil.toml" --out "$OUT/$soil" --threads 2 --quiet
+  ./build/geodem run "examples/interface_shear2d/$soil.toml" --out "$OUT/$soil" --overwrite --threads 2 --quiet
   cp "$OUT/$soil/interface_shear.png" "$EXPECTED/${soil}_interface_shear.png"
   cp "$OUT/$soil/interface_envelope.png" "$EXPECTED/${soil}_interface_envelope.png"
   if [ $CALIBRATE = 1 ]; then
-    ./build/geodem run "examples/interface_shear2d/calibrate_$soil.toml" --out "$OUT/calibrate_$soil" \
+    ./build/geodem run "examples/interface_shear2d/calibrate_$soil.toml" --out "$OUT/calibrate_$soil" --overwrite \
       --threads 2 --quiet
     cp "$OUT/calibrate_$soil/interface_calibration.png" "$EXPECTED/${soil}_interface_calibration.png"
   fi

@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 OUT=${1:-runs/refine}
 for name in L_silt L_sand; do
-  ./build/geodem run "examples/pullout2d/$name.toml" --out "$OUT/$name" --threads 2 --quiet \
+  ./build/geodem run "examples/pullout2d/$name.toml" --out "$OUT/$name" --overwrite --threads 2 --quiet \
     --set 'refinement.radius_factors=[1.0, 0.7071, 0.5]' --set pull.max_displacement=0.2 \
     --set 'pull.profiles_at=[0.02, 0.1, 0.2]'
   cp "$OUT/$name/pullout_refinement.png" "examples/pullout2d/expected/${name}_refinement.png"

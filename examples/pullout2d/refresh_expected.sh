@@ -10,7 +10,7 @@ OUT=${1:-runs/pullout2d}
 EXPECTED=examples/pullout2d/expected
 mkdir -p "$OUT" "$EXPECTED"
 for name in L_sand L_silt V_sand runout_sand runout_silt; do
-  ./build/geodem run "examples/pullout2d/$name.toml" --out "$OUT/$name" --threads 2 --quiet
+  ./build/geodem run "examples/pullout2d/$name.toml" --out "$OUT/$name" --overwrite --threads 2 --quiet
   cp "$OUT/$name/pullout_seeds.png" "$EXPECTED/${name}_seeds.png"
   ./build/geodem plot "$OUT/$name/runs/seed1" > /dev/null
   for fig in pullout pullout_initial pullout_final tension_profiles; do
@@ -22,7 +22,7 @@ cat "$EXPECTED/table.md"
 # The run-out series against the estimate, and the biaxial tests of both soils.
 python3 examples/pullout2d/runout_study.py "$OUT/runout_study" | tee "$EXPECTED/runout_study.md"
 for soil in sand silt; do
-  ./build/geodem run "examples/pullout2d/soil_${soil}_biaxial.toml" --out "$OUT/soil_$soil" --quiet \
+  ./build/geodem run "examples/pullout2d/soil_${soil}_biaxial.toml" --out "$OUT/soil_$soil" --overwrite --quiet \
     --threads 2
   cp "$OUT/soil_$soil/mohr_coulomb.png" "$EXPECTED/soil_${soil}_mohr_coulomb.png"
 done

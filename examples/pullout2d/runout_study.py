@@ -26,7 +26,7 @@ def main(argv):
         run_dir = out / f"L{length}_h{cover}"
         t0 = time.time()
         subprocess.run([str(ROOT / "build" / "geodem"), "run", str(BASE), "--out", str(run_dir),
-                        "--quiet", "--set", f"anchor.runout_length={length}",
+                        "--overwrite", "--quiet", "--set", f"soil.deposit_cache={out / 'deposits'}", "--set", f"anchor.runout_length={length}",
                         "--set", f"anchor.cover={cover}", "--set", "output.vtk=false",
                         "--set", "output.plots=false"], check=True)
         r = json.loads((run_dir / "summary.json").read_text())["results"]

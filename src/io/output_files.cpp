@@ -1,5 +1,8 @@
 #include "io/output_files.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -10,6 +13,13 @@
 
 namespace geodem {
 
+void sync_to_disk(const std::string& path, bool folder) {
+  const int fd = ::open(path.c_str(), folder ? (O_RDONLY | O_DIRECTORY) : O_RDONLY);
+  if (fd < 0) return;
+  (void)::fsync(fd);
+  ::close(fd);
+}
+
 void write_file_atomic(const std::string& path, const std::string& content) {
   const std::string tmp = path + ".tmp";
   {
@@ -19,8 +29,16 @@ void write_file_atomic(const std::string& path, const std::string& content) {
     out.flush();
     if (!out) throw std::runtime_error("error writing " + tmp);
   }
+  sync_to_disk(tmp, false);  // the content on disk before the name points to it
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
     throw std::runtime_error("cannot rename " + tmp + " to " + path);
+}
+
+void HistoryCsv::sync() {
+  if (!out_.is_open()) return;
+  out_.flush();
+  if (!out_) throw std::runtime_error("error writing " + path_ + " (disk full?)");
+  sync_to_disk(path_, false);
 }
 
 std::string read_text_file(const std::string& path) {
@@ -40,6 +58,7 @@ std::string format_number(double v) {
 void HistoryCsv::open(const std::string& path, const std::vector<std::string>& columns) {
   out_.open(path, std::ios::trunc);
   if (!out_) throw std::runtime_error("cannot write " + path);
+  path_ = path;
   columns_ = columns.size();
   for (std::size_t k = 0; k < columns.size(); ++k) out_ << (k ? "," : "") << columns[k];
   out_ << '\n';
@@ -72,6 +91,7 @@ std::size_t HistoryCsv::reopen(const std::string& path, const std::vector<std::s
   out_.clear();
   out_.open(path, std::ios::app);
   if (!out_) throw std::runtime_error("cannot write " + path);
+  path_ = path;
   columns_ = columns.size();
   rows_ = rows;
   return rows;

@@ -12,6 +12,9 @@ namespace geodem {
 // Writes `content` to `path` atomically (temporary file + rename).
 void write_file_atomic(const std::string& path, const std::string& content);
 
+// fsync of a file or a folder (a folder: the names renamed into it), best effort.
+void sync_to_disk(const std::string& path, bool folder);
+
 // The whole content of a file (runtime_error when it cannot be read).
 std::string read_text_file(const std::string& path);
 
@@ -28,6 +31,9 @@ class HistoryCsv {
   void resume_rows(const std::string& path, const std::vector<std::string>& columns,
                    std::size_t rows);
   void row(const std::vector<double>& values);
+  // Every row written so far on disk (flushed and fsynced): before a checkpoint that
+  // counts them is put in place.
+  void sync();
   bool is_open() const { return out_.is_open(); }
   std::size_t rows() const { return rows_; }
 
@@ -37,6 +43,7 @@ class HistoryCsv {
   template <class Keep>
   std::size_t reopen(const std::string& path, const std::vector<std::string>& columns, Keep keep);
   std::ofstream out_;
+  std::string path_;
   std::size_t columns_ = 0, rows_ = 0;
 };
 

@@ -12,6 +12,7 @@
 
 #include "io/checkpoint.hpp"
 #include "io/interrupt.hpp"
+#include "io/output_files.hpp"
 #include "io/state_archive.hpp"
 
 namespace geodem {
@@ -51,7 +52,13 @@ class RunCheckpoints {
            (spec_.every_seconds > 0.0 && elapsed() - last_wall_ >= spec_.every_seconds);
   }
 
-  // Writes a checkpoint of the runner's state and the world's; returns its path.
+  // The CSV files whose row counts the runner saves in its checkpoints. write() puts
+  // their rows on disk before the checkpoint that counts them (crash consistency: a
+  // checkpoint never counts a row a crash can lose).
+  void outputs(std::vector<HistoryCsv*> files) { outputs_ = std::move(files); }
+
+  // Writes a checkpoint of the runner's state and the world's, after the outputs' rows and
+  // the output folder are on disk; returns its path.
   const std::string& write(std::uint64_t step, double time, std::string runner, std::string world);
 
   // For run loops after a whole step: writes a checkpoint when one is due or a signal has
@@ -86,6 +93,7 @@ class RunCheckpoints {
   const nlohmann::json& resolved_;
   std::string out_dir_;
   CheckpointSpec spec_;
+  std::vector<HistoryCsv*> outputs_;
   std::string last_;
   std::uint64_t last_step_ = 0;
   double last_wall_ = 0.0;  // elapsed() at the last checkpoint

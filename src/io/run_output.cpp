@@ -26,6 +26,28 @@ void prepare_output_dir(const std::string& dir) {
   if (ec) throw std::runtime_error("cannot create output folder " + dir + ": " + ec.message());
 }
 
+std::string claim_output_dir(const std::string& dir, bool overwrite) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(dir, ec) || fs::is_empty(dir, ec)) return "";
+  if (!fs::is_directory(dir, ec)) return dir + " exists and is not a folder; choose another --out";
+  // What a geodem run leaves: only such a folder is emptied by --overwrite.
+  bool a_run = false;
+  for (const char* mark : {"summary.json", "checkpoint", "history.csv", "preparation.csv", "runs", "vtk"})
+    a_run = a_run || fs::exists(fs::path(dir) / mark, ec);
+  if (!a_run)
+    return dir + " is not empty and holds no geodem run (no summary.json, history.csv or " +
+           "checkpoint/): choose another --out; --overwrite does not empty it";
+  if (!overwrite)
+    return dir + " holds an earlier run: give --overwrite to replace it (its files are " +
+           "deleted first), --resume " + dir + " to continue it, or another --out";
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    fs::remove_all(entry.path(), ec);
+    if (ec) return "cannot empty " + dir + " (" + entry.path().string() + ": " + ec.message() + ")";
+  }
+  return "";
+}
+
 void write_summary(const std::string& dir, const nlohmann::json& summary) {
   write_file_atomic(dir + "/summary.json", summary.dump(2) + "\n");
 }
@@ -126,7 +148,9 @@ void VtkSeries<D>::restore(StateReader& in) {
     if (digits.size() > 12 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
     if (std::stoll(digits) >= count_) std::filesystem::remove(f.path(), ec);
   }
-  pvd_.write();
+  // The index as the run had it: none before its first frame (a run without frames, such
+  // as a study's, leaves its vtk/ folder empty).
+  if (count_ > 0) pvd_.write();
 }
 
 bool make_plots(const std::string& dir, bool quiet) {

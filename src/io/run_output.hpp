@@ -21,6 +21,13 @@ struct RunOptions {
 // Creates DIR and DIR/vtk (exit code 1 on failure).
 void prepare_output_dir(const std::string& dir);
 
+// The output folder of a new run (not a resume): refused, with a message saying why and
+// what to do, when it holds files; with `overwrite`, a folder that holds an earlier geodem
+// run (summary.json, history.csv, checkpoint/...) is emptied first, so that no file of the
+// earlier run (VTK frames, CSVs, plots) stays beside the new one. Returns "" when the
+// folder may be written; never empties a folder that is not a run's.
+std::string claim_output_dir(const std::string& dir, bool overwrite);
+
 // summary.json: {"kind", "geodem_version", "status", "scenario", "results", "timing"}.
 void write_summary(const std::string& dir, const nlohmann::json& summary);
 

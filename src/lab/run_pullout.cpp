@@ -96,7 +96,9 @@ struct Pullout {
         checkpoints("pullout", 2, settings.resolved, options.out_dir, settings.checkpoint),
         deposit_cache(settings.deposit_cache, "pullout_foundation", settings.resolved,
                       {"anchor", "sheet", "surcharge", "pull", "analytic", "output", "refinement",
-                       "checkpoint", "seeds", "title"}) {}
+                       "checkpoint", "seeds", "title"}) {
+    checkpoints.outputs({&prep_csv, &history, &profiles});
+  }
 
   double elapsed() const { return checkpoints.elapsed(); }
   std::string prep_path() const { return opt.out_dir + "/preparation.csv"; }

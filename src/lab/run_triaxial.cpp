@@ -100,7 +100,9 @@ struct Lab {
         opt(options),
         progress(options.quiet),
         vtk(options.out_dir),
-        checkpoints("triaxial", D, settings.resolved, options.out_dir, settings.checkpoint) {}
+        checkpoints("triaxial", D, settings.resolved, options.out_dir, settings.checkpoint) {
+    checkpoints.outputs({&prep_csv, &history});
+  }
 
   double elapsed() const { return checkpoints.elapsed(); }
   double porosity() const { return 1.0 - solid_volume(w) / box.volume(w); }

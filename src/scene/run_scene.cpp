@@ -92,6 +92,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     return std::array<double, 3>{S.tension[e0], S.tension[e1], tmax};
   };
   HistoryCsv history;
+  checkpoints.outputs({&history});
   VtkSeries<D> vtk(opt.out_dir);
   if (opt.resume) {
     StateReader in(resumed.runner.data(), resumed.runner.size());

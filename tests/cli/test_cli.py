@@ -321,6 +321,34 @@ create = "initial"
         (self.dir / "grains.txt").write_text("1 0.05 0.05 oops\n")
         self.assertBadInput(text, "grains.txt:1", "oops")
 
+    def test_output_folder_of_an_earlier_run_needs_overwrite(self):
+        out = self.dir / "out"
+        three = self.write(scene(3) + "vtk_every = 100\n", "s3.toml")
+        two = self.write(scene(2) + "vtk_every = 100\n", "s2.toml")
+        self.assertEqual(run("run", three, "--out", str(out), "--quiet").returncode, 0)
+        frames3 = sorted(p.name for p in (out / "vtk").iterdir())
+        r = run("run", two, "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("--overwrite", r.stderr)
+        self.assertEqual(sorted(p.name for p in (out / "vtk").iterdir()), frames3)  # untouched
+        r = run("run", two, "--out", str(out), "--quiet", "--overwrite")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        summary = json.loads((out / "summary.json").read_text())
+        self.assertEqual(summary["scenario"]["dimension"], 2)
+        pvd = (out / "vtk" / "particles.pvd").read_text()
+        for frame in (out / "vtk").iterdir():  # every frame is the new run's
+            self.assertTrue(frame.suffix == ".pvd" or frame.name in pvd, frame.name)
+        r = run("run", two, "--resume", str(out), "--overwrite", "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        # A folder that holds no run is never emptied.
+        other = self.dir / "notes"
+        other.mkdir()
+        (other / "mine.txt").write_text("keep me")
+        r = run("run", two, "--out", str(other), "--quiet", "--overwrite")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("holds no geodem run", r.stderr)
+        self.assertEqual((other / "mine.txt").read_text(), "keep me")
+
     def test_pullout_deposit_cache_gives_the_runs_bit_for_bit(self):
         # The foundation stored by one run and loaded by the next, and by a run of another
         # anchor on the same foundation: every output as without the cache; another grain

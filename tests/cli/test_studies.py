@@ -148,7 +148,7 @@ class StudyTest(unittest.TestCase):
             done = {f: (f.stat().st_mtime_ns, f.read_bytes()) for f in out.glob("runs/*/summary.json")}
             if not done or (out / "summary.json").exists():
                 continue  # killed too early or too late: try the next attempt
-            r = run("run", study, "--out", str(out), "--threads", "2", "--quiet")
+            r = run("run", study, "--resume", str(out), "--threads", "2", "--quiet")
             self.assertEqual(r.returncode, 0, r.stderr)
             for f, (mtime, content) in done.items():
                 self.assertEqual(f.stat().st_mtime_ns, mtime, f"{f} was run again")
@@ -180,7 +180,7 @@ class StudyTest(unittest.TestCase):
         p.send_signal(signal.SIGKILL)
         p.wait()
         self.assertFalse((out / "summary.json").exists(), "the study ended before the kill")
-        r = run("run", study, "--out", str(out), "--threads", "1", "--quiet")
+        r = run("run", study, "--resume", str(out), "--threads", "1", "--quiet")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("resuming from", r.stderr)
         self.assertEqual(results(out), results(fresh))
@@ -191,11 +191,11 @@ class StudyTest(unittest.TestCase):
         study = self.write(SERIES)
         out = self.dir / "out"
         self.assertEqual(run("run", study, "--out", str(out), "--quiet").returncode, 0)
-        r = run("run", study, "--out", str(out), "--quiet", "--set", "material.friction_deg=25")
+        r = run("run", study, "--resume", str(out), "--quiet", "--set", "material.friction_deg=25")
         self.assertEqual(r.returncode, 0, r.stderr)
         s = json.loads((out / "summary.json").read_text())
         self.assertEqual(s["timing"]["runs_reused"], 0)
-        r = run("run", study, "--out", str(out), "--quiet", "--set", "material.friction_deg=25")
+        r = run("run", study, "--resume", str(out), "--quiet", "--set", "material.friction_deg=25")
         self.assertEqual(json.loads((out / "summary.json").read_text())["timing"]["runs_reused"], 9)
 
     def test_mpi_ranks_give_the_same_results_as_one_process(self):

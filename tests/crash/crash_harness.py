@@ -1,0 +1,331 @@
+#!/usr/bin/env python3
+"""Crash harness: every kind of run killed with SIGKILL at random moments, resumed, and
+compared with a run that was never interrupted.
+
+For each kind a small scenario is run once to the end (the reference, and its duration T).
+Then, for each kill, the same scenario is started into a fresh folder and SIGKILLed after
+a random fraction of T (so kills land in every stage, in output writes and in checkpoint
+writes: checkpoints are written every few hundred steps); a third of the runs is killed a
+second time while resuming. The folder is then finished the way a user would: `--resume`
+when it holds a checkpoint (a study: when it has begun its runs; it keeps the finished ones
+and continues the others), the same command with `--overwrite` otherwise (killed before
+its first checkpoint). Every CSV and VTK file and
+the summary's results must equal the reference's, bit for bit (a scene's wall_s column
+aside).
+
+    tests/crash/crash_harness.py GEODEM [--kills 20] [--kinds scene,triaxial,...] [--seed 1]
+
+Prints a table (docs/verification.md, "Crash consistency") and exits 1 on any difference.
+"""
+import argparse
+import csv
+import hashlib
+import io
+import json
+import random
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+CHECKPOINT = "\n[checkpoint]\nevery_steps = {every}\nkeep = 2\n"
+
+SCENE = """
+kind = "scene"
+dimension = 3
+seed = 2
+[time]
+step = "auto"
+duration = 0.25
+[physics]
+gravity = [0, 0, -9.81]
+local_damping = 0.2
+[[materials]]
+name = "sand"
+young = 1e6
+friction = 0.5
+rolling_friction = 0.1
+[[walls]]
+name = "floor"
+normal = [0, 0, 1]
+area = 0.01
+[[clouds]]
+min = [0, 0, 0]
+max = [0.1, 0.1, 0.1]
+count = 2000
+radius = 0.002
+[output]
+history_every = 20
+vtk_every = 400
+plots = false
+"""
+
+TRIAXIAL = """
+kind = "triaxial"
+dimension = 2
+seed = 3
+[sample]
+box = [0.4, 0.8]
+count = 150
+initial_porosity = 0.9
+grain = "pair_0.9"
+[material]
+density = 2650.0
+young = 1e8
+kt_over_kn = 0.5
+friction = 0.5
+rolling_friction = 0.1
+normal_cohesion = 5e4
+shear_cohesion = 5e4
+[compaction]
+confining_stress = 1e5
+target_porosity = 0.235
+[shear]
+strain_rate = 0.05
+max_axial_strain = 0.01
+confining_stress = [5e4, 1e5]
+vtk_at_strains = [0.005]
+[output]
+plots = false
+"""
+
+PULLOUT = """
+kind = "pullout"
+seed = 1
+[box]
+length = 0.8
+foundation = 0.12
+[soil]
+density = 2600.0
+young = 2e7
+friction_deg = 30.0
+radius = 0.008
+[anchor]
+shape = "L"
+runout_length = 0.5
+cover = 0.1
+front = "free"
+trench_depth = 0.05
+[sheet]
+stiffness_J = 1e5
+interface_friction_deg = 20.0
+[surcharge]
+pressure = 2000.0
+[pull]
+rate = 0.02
+max_displacement = 0.01
+[analytic]
+soil_friction_deg = 30.0
+[output]
+plots = false
+"""
+
+SERIES = """
+kind = "series"
+dimension = 2
+seed = 1
+[sample]
+box = [0.4, 0.8]
+count = 100
+radius_fuzz = 0.25
+initial_porosity = 0.9
+[material]
+density = 2650.0
+young = 1e8
+kt_over_kn = 0.5
+friction_deg = 30.0
+[compaction]
+confining_stress = 1e5
+damping = 0.2
+[shear]
+strain_rate = 0.05
+max_axial_strain = 0.02
+confining_stress = [1e5]
+damping = 0.1
+[output]
+plots = false
+[series]
+counts = [60, 120]
+seeds = 2
+tolerance = 0.05
+"""
+
+SHEAR = """
+kind = "interface_shear"
+seed = 1
+[box]
+length = 0.2
+height = 0.05
+base = "soil"
+lower_height = 0.05
+[soil]
+density = 2600.0
+young = 2e7
+kt_over_kn = 0.5
+friction_deg = 30.0
+grain = "pair_0.9"
+radius = 0.005
+deposit_friction_deg = 0.0
+[sheet]
+interface_friction_deg = 25.0
+stiffness_J = 1e6
+bending_stiffness = 0.1
+[shear]
+normal_stress = [10e3, 20e3]
+rate = 0.02
+max_displacement = 0.02
+history_points = 50
+[output]
+vtk = false
+plots = false
+"""
+
+PULLOUT_SEEDS = PULLOUT.replace("seed = 1", "seed = 1\nseeds = 2").replace(
+    "max_displacement = 0.01", "max_displacement = 0.004")
+
+# kind: (scenario, checkpoint period in steps (None: none), a study)
+CASES = {
+    "scene": (SCENE, 300, False),
+    "triaxial": (TRIAXIAL, 2500, False),
+    "pullout": (PULLOUT, 3000, False),
+    "interface_shear": (SHEAR, None, False),
+    "series": (SERIES, 3000, True),
+    "pullout_seeds": (PULLOUT_SEEDS, 4000, True),
+}
+
+
+def without_wall_time(x):
+    """A summary's results less the wall-clock times of its runs (wall_s)."""
+    if isinstance(x, dict):
+        return {k: without_wall_time(v) for k, v in x.items() if k != "wall_s"}
+    if isinstance(x, list):
+        return [without_wall_time(v) for v in x]
+    return x
+
+
+def digests(folder):
+    """SHA-256 of every CSV and VTK file under a run's folder (a scene's wall_s column
+    left out) and its summary's results, by relative path."""
+    folder = Path(folder)
+    out = {}
+    for p in sorted(folder.rglob("*")):
+        if not p.is_file() or "checkpoint" in p.parts:
+            continue
+        if p.suffix in (".vtu", ".vtp", ".pvd"):
+            out[str(p.relative_to(folder))] = hashlib.sha256(p.read_bytes()).hexdigest()
+        elif p.suffix == ".csv":
+            rows = list(csv.reader(io.StringIO(p.read_text())))
+            if rows and "wall_s" in rows[0]:
+                k = rows[0].index("wall_s")
+                rows = [r[:k] + r[k + 1:] for r in rows]
+            out[str(p.relative_to(folder))] = hashlib.sha256(repr(rows).encode()).hexdigest()
+        elif p.name == "summary.json":
+            s = json.loads(p.read_text())
+            res = without_wall_time(s.get("results", {}))
+            res.pop("checkpoint", None)
+            out[str(p.relative_to(folder))] = json.dumps([s.get("status"), res], sort_keys=True)
+    return out
+
+
+class Harness:
+    def __init__(self, geodem, work, rng, keep_failed=False):
+        self.geodem, self.work, self.rng = geodem, Path(work), rng
+        self.keep_failed = keep_failed
+
+    def command(self, scenario, out, resume=False):
+        cmd = [self.geodem, "run", str(scenario), "--quiet"]
+        return cmd + (["--resume", str(out)] if resume else ["--out", str(out)])
+
+    def run_killed(self, cmd, after):
+        p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        try:
+            p.wait(timeout=after)
+            return False  # it finished before the kill
+        except subprocess.TimeoutExpired:
+            p.send_signal(signal.SIGKILL)
+            p.wait()
+            return True
+
+    def finish(self, scenario, out, restartable):
+        """Completes a killed folder as a user would; returns how."""
+        has_checkpoint = any((out / "checkpoint").glob("checkpoint_*.bin"))
+        if (restartable and (out / "runs").is_dir()) or has_checkpoint:
+            how, cmd = "resumed", self.command(scenario, out, resume=True)
+        else:  # killed before anything to resume from: the same run again
+            how, cmd = "rerun", self.command(scenario, out) + ["--overwrite"]
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
+        if r.returncode != 0:
+            raise RuntimeError(f"{how}: exit {r.returncode}: {r.stderr.strip()[-400:]}")
+        return how
+
+    def kind(self, name, kills):
+        text, every, study = CASES[name]
+        folder = self.work / name
+        folder.mkdir(parents=True)
+        scenario = folder / "scenario.toml"
+        scenario.write_text(text + (CHECKPOINT.format(every=every) if every else ""))
+        ref = folder / "ref"
+        t0 = time.monotonic()
+        r = subprocess.run(self.command(scenario, ref), capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"{name} reference: {r.stderr}")
+        duration = time.monotonic() - t0
+        expected = digests(ref)
+        row = {"kind": name, "reference_s": duration, "kills": 0, "double": 0, "resumed": 0,
+               "rerun": 0, "identical": 0, "failures": []}
+        for k in range(kills):
+            out = folder / f"kill{k}"
+            at = self.rng.uniform(0.03, 1.0) * duration
+            killed = self.run_killed(self.command(scenario, out), at)
+            row["kills"] += killed
+            if killed and self.rng.random() < 1 / 3 and (
+                    any((out / "checkpoint").glob("checkpoint_*.bin")) or
+                    (study and (out / "runs").is_dir())):
+                again = self.rng.uniform(0.1, 0.6) * duration
+                row["double"] += self.run_killed(self.command(scenario, out, resume=True), again)
+            try:
+                how = self.finish(scenario, out, study) if killed else "finished"
+                row[how] = row.get(how, 0) + 1
+                got = digests(out)
+                diff = sorted(n for n in set(got) | set(expected) if got.get(n) != expected.get(n))
+                if diff:
+                    row["failures"].append(f"kill {k} at {at:.2f} s: differs in {diff[:4]}")
+                else:
+                    row["identical"] += 1
+            except Exception as e:  # noqa: BLE001 - every failure is reported in the table
+                row["failures"].append(f"kill {k} at {at:.2f} s: {e}")
+            if not self.keep_failed or not row["failures"]:
+                shutil.rmtree(out, ignore_errors=True)
+        return row
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("geodem")
+    ap.add_argument("--kills", type=int, default=20)
+    ap.add_argument("--kinds", default=",".join(CASES))
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--keep", help="work folder to keep (default: a temporary one)")
+    a = ap.parse_args()
+    work = Path(a.keep) if a.keep else Path(tempfile.mkdtemp(prefix="geodem_crash_"))
+    h = Harness(str(Path(a.geodem).resolve()), work, random.Random(a.seed), bool(a.keep))
+    print("| kind | reference run (s) | kills | killed twice | resumed | rerun | identical |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    failures = []
+    for name in a.kinds.split(","):
+        row = h.kind(name, a.kills)
+        print(f"| {name} | {row['reference_s']:.1f} | {row['kills']} | {row['double']} |"
+              f" {row['resumed']} | {row['rerun']} | {row['identical']} of {a.kills} |", flush=True)
+        failures += [f"{name}: {f}" for f in row["failures"]]
+    for f in failures:
+        print("FAILED", f)
+    if not a.keep:
+        shutil.rmtree(work, ignore_errors=True)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
