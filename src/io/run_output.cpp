@@ -33,7 +33,8 @@ std::string claim_output_dir(const std::string& dir, bool overwrite) {
   if (!fs::is_directory(dir, ec)) return dir + " exists and is not a folder; choose another --out";
   // What a geodem run leaves: only such a folder is emptied by --overwrite.
   bool a_run = false;
-  for (const char* mark : {"summary.json", "checkpoint", "history.csv", "preparation.csv", "runs", "vtk"})
+  for (const char* mark :
+       {"summary.json", "checkpoint", "history.csv", "preparation.csv", "runs", "vtk"})
     a_run = a_run || fs::exists(fs::path(dir) / mark, ec);
   if (!a_run)
     return dir + " is not empty and holds no geodem run (no summary.json, history.csv or " +
