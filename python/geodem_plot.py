@@ -67,21 +67,31 @@ def plot_scene(out, summary, h):
         fig, ax = plt.subplots(figsize=(6.4, 4.2))
         for w in walls:
             name = w["name"]
-            comps = [h.get(f"wall_{name}_f{a}") for a in axes]
-            if any(c is None for c in comps):
-                continue
-            normal = w.get("normal")
-            if normal:
-                norm = math.sqrt(sum(x * x for x in normal))
-                fn = [-sum(c[i] * n / norm for c, n in zip(comps, normal)) for i in range(len(t))]
-            else:
-                fn = [math.sqrt(sum(c[i] ** 2 for c in comps)) for i in range(len(t))]
-            ax.plot(t, fn, label=name)
+            # A plane or segment wall has its own columns; a polyline's segments are walls
+            # NAME_0, NAME_1, ... with a column group each.
+            parts = [name] if f"wall_{name}_f{axes[0]}" in h else []
+            k = 0
+            while f"wall_{name}_{k}_f{axes[0]}" in h:
+                parts.append(f"{name}_{k}")
+                k += 1
+            for part in parts:
+                comps = [h.get(f"wall_{part}_f{a}") for a in axes]
+                if any(c is None for c in comps):
+                    continue
+                normal = w.get("normal") if part == name else None
+                if normal:
+                    norm = math.sqrt(sum(x * x for x in normal))
+                    fn = [-sum(c[i] * n / norm for c, n in zip(comps, normal))
+                          for i in range(len(t))]
+                else:  # the force's magnitude (a segment's normal has no set sign)
+                    fn = [math.sqrt(sum(c[i] ** 2 for c in comps)) for i in range(len(t))]
+                ax.plot(t, fn, label=part)
         weight = summary.get("results", {}).get("total_weight")
         if weight:
             ax.axhline(weight, color="k", ls="--", lw=0.8, label="total weight")
         ax.set_xlabel("time (s)")
-        ax.set_ylabel("normal force on wall (N)" if dim == 3 else "normal force on wall (N/m)")
+        unit = "N" if dim == 3 else "N/m"
+        ax.set_ylabel(f"force on wall ({unit}): normal; polyline segments: magnitude")
         ax.legend(fontsize=8)
         ax.set_title("Wall forces")
         save(fig, out, "wall_forces.png", made)

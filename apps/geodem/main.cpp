@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "check_command.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "io/interrupt.hpp"
@@ -35,7 +36,6 @@ Loaded load(const std::string& file, const std::vector<std::string>& overrides) 
 
 int run_main(int argc, char** argv);
 
-// Studies: their runs go to `--threads` workers on each MPI rank; rank 0 reports.
 // A new run's output folder (io/run_output.hpp, claim_output_dir): rank 0 decides (and
 // empties the folder on --overwrite) before any rank writes into it.
 void claim_output(const geodem::RunOptions& opt, bool overwrite) {
@@ -46,32 +46,28 @@ void claim_output(const geodem::RunOptions& opt, bool overwrite) {
   if (!refusal.empty()) throw geodem::InputError("", 0, "--out", refusal);
 }
 
-int run_study(const Loaded& l, const std::string& file, bool check_only,
-              const geodem::RunOptions& opt, bool overwrite) {
+// Studies: their runs go to `--threads` workers on each MPI rank; rank 0 reports.
+int run_study(const Loaded& l, const std::string& file, const geodem::RunOptions& opt,
+              bool overwrite) {
   nlohmann::json summary;
   bool plots = true;
   if (l.kind == "series") {
     const auto s = geodem::read_series(l.root, file);
-    if (check_only) return std::printf("%s: ok (kind = \"series\")\n", file.c_str()), kOk;
     claim_output(opt, overwrite);
     summary = geodem::run_series(s, opt);
     plots = s.study.plots;
   } else if (l.kind == "rate_study") {
     const auto s = geodem::read_rate_study(l.root, file);
-    if (check_only) return std::printf("%s: ok (kind = \"rate_study\")\n", file.c_str()), kOk;
     claim_output(opt, overwrite);
     summary = geodem::run_rate_study(s, opt);
     plots = s.study.plots;
   } else if (geodem::is_interface_calibration(l.root)) {
     const auto s = geodem::read_interface_calibrate(l.root, file);
-    if (check_only)
-      return std::printf("%s: ok (kind = \"calibrate\", interface)\n", file.c_str()), kOk;
     claim_output(opt, overwrite);
     summary = geodem::run_interface_calibrate(s, opt);
     plots = s.plots;
   } else {
     const auto s = geodem::read_calibrate(l.root, file);
-    if (check_only) return std::printf("%s: ok (kind = \"calibrate\")\n", file.c_str()), kOk;
     claim_output(opt, overwrite);
     summary = geodem::run_calibrate(s, opt);
     plots = s.study.plots;
@@ -168,6 +164,7 @@ int run_main(int argc, char** argv) {
       return geodem::make_plots(plot_dir, false) ? kOk : kFailure;
     }
     Loaded l = load(scenario, overrides);
+    if (*check) return check_scenario(l, scenario);
     geodem::RunOptions opt;
     opt.out_dir = out_dir;
     opt.quiet = quiet;
@@ -188,7 +185,7 @@ int run_main(int argc, char** argv) {
       opt.resume = true;
     }
     if (l.kind == "series" || l.kind == "rate_study" || l.kind == "calibrate")
-      return run_study(l, scenario, check->parsed(), opt, overwrite);
+      return run_study(l, scenario, opt, overwrite);
     // A pull-out over seeds or grain sizes runs its runs as a study does.
     const bool pullout_series =
         l.kind == "pullout" && (l.root["seeds"].value_or(1LL) > 1 || l.root.contains("refinement"));
@@ -202,10 +199,6 @@ int run_main(int argc, char** argv) {
     if (!pullout_series) geodem::install_interrupt_handlers();
     if (l.kind == "triaxial") {
       const geodem::TriaxialSettings t = geodem::read_triaxial(l.root, scenario);
-      if (*check) {
-        std::printf("%s: ok (kind = \"triaxial\", dimension %d)\n", scenario.c_str(), t.dimension);
-        return kOk;
-      }
       claim_output(opt, overwrite);
       geodem::run_triaxial(t, opt);
       if (t.plots) geodem::make_plots(out_dir, quiet);
@@ -214,11 +207,6 @@ int run_main(int argc, char** argv) {
     }
     if (l.kind == "pullout") {
       const geodem::PulloutSettings p = geodem::read_pullout(l.root, scenario);
-      if (*check) {
-        std::printf("%s: ok (kind = \"pullout\", shape %s)\n", scenario.c_str(),
-                    p.anchor.shape.c_str());
-        return kOk;
-      }
       if (p.seeds > 1 || !p.radius_factors.empty()) {
         claim_output(opt, overwrite);  // a resumed series keeps its finished runs
         const auto summary = geodem::run_pullout_series(l.root, p, opt);
@@ -245,11 +233,6 @@ int run_main(int argc, char** argv) {
     }
     if (l.kind == "interface_shear") {
       const geodem::InterfaceShearSettings p = geodem::read_interface_shear(l.root, scenario);
-      if (*check) {
-        std::printf("%s: ok (kind = \"interface_shear\", %zu normal stresses)\n", scenario.c_str(),
-                    p.normal_stress.size());
-        return kOk;
-      }
       claim_output(opt, overwrite);
       const auto summary = geodem::run_interface_shear(p, opt);
       if (p.plots) geodem::make_plots(out_dir, quiet);
@@ -263,19 +246,6 @@ int run_main(int argc, char** argv) {
       return kOk;
     }
     const geodem::SceneSettings s = geodem::read_scene(l.root, scenario);
-    if (*check) {
-      // Build the scene too: random clouds that cannot be placed are input errors.
-      if (s.dimension == 2) {
-        geodem::World<2> w;
-        geodem::build_world(s, w);
-      } else {
-        geodem::World<3> w;
-        geodem::build_world(s, w);
-      }
-      std::printf("%s: ok (kind = \"%s\", dimension %d)\n", scenario.c_str(), l.kind.c_str(),
-                  s.dimension);
-      return kOk;
-    }
     claim_output(opt, overwrite);
     const auto summary = geodem::run_scene(s, opt);
     if (s.output.plots) geodem::make_plots(out_dir, quiet);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "io/output_files.hpp"
 #include "scene/scene_settings.hpp"
 
 namespace geodem {
@@ -82,12 +83,26 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
   if (c->has("target_porosity"))
     s.target_porosity = c->in_range("target_porosity", 0.4, 0.05, 0.95);
   s.compaction_damping = c->in_range("damping", 0.2, 0.0, 0.99);
+  // Defaults derived from the stiffness: a message on them names the key they come from.
+  const bool max_given = c->has("max_multiplier"), final_given = c->has("final_max_multiplier");
   s.max_multiplier = c->number("max_multiplier", 1.0 + 2e4 / s.grain.young);
   s.final_max_multiplier = c->number("final_max_multiplier", 1.0 + 2e3 / s.grain.young);
+  const std::string young = format_number(s.grain.young);
   if (!(s.max_multiplier > 1.0 && s.max_multiplier < 1.5))
-    c->fail("max_multiplier", "expected a growth factor in (1, 1.5)");
+    c->fail("max_multiplier",
+            max_given ? "expected a growth factor in (1, 1.5)"
+                      : "defaults to 1 + 2e4 / material.young = 1 + 2e4 / " + young + " = " +
+                            format_number(s.max_multiplier) +
+                            ", not a growth factor in (1, 1.5): material.young is too low for "
+                            "radius growth (give a stiffer material, or "
+                            "compaction.max_multiplier)");
   if (!(s.final_max_multiplier > 1.0 && s.final_max_multiplier <= s.max_multiplier))
-    c->fail("final_max_multiplier", "expected a growth factor in (1, max_multiplier]");
+    c->fail("final_max_multiplier", final_given
+                                        ? "expected a growth factor in (1, max_multiplier]"
+                                        : "defaults to 1 + 2e3 / material.young = " +
+                                              format_number(s.final_max_multiplier) +
+                                              ", not a growth factor in (1, max_multiplier = " +
+                                              format_number(s.max_multiplier) + "]");
   s.stress_tolerance = c->in_range("stress_tolerance", 0.005, 1e-5, 0.2);
   s.unbalanced_tolerance = c->in_range("unbalanced_tolerance", 1e-3, 1e-6, 0.5);
   s.friction_factor = c->in_range("friction_factor", 0.95, 0.1, 0.999);

@@ -321,6 +321,28 @@ create = "initial"
         (self.dir / "grains.txt").write_text("1 0.05 0.05 oops\n")
         self.assertBadInput(text, "grains.txt:1", "oops")
 
+    def test_check_lists_every_problem_by_line(self):
+        text = LAB_CHECKPOINT_TRIAXIAL.replace("count = 150", "count = -150")
+        text = text.replace("young = 1e8", 'young = "soft"')
+        text = text.replace("friction = 0.5", "friction = 0.5\nfrictoin = 0.3")
+        text = text.replace("strain_rate = 0.05", "strain_rate = -0.05\ncolour = 1")
+        text = text.replace("[output]", "[output]\nplot = false")
+        r = run("check", self.write(text))
+        self.assertEqual(r.returncode, 2, r.stderr)
+        errors = [l for l in r.stderr.splitlines() if l.startswith("error:")]
+        keys = ["sample.count", "material.young", "material.frictoin", "shear.strain_rate",
+                "shear.colour", "output.plot"]
+        self.assertEqual(len(errors), len(keys), r.stderr)
+        for line, key in zip(errors, keys):  # in file order
+            self.assertIn(f"key '{key}'", line)
+        lines = [int(l.split(":")[2]) for l in errors]
+        self.assertEqual(lines, sorted(lines))
+        self.assertIn("6 problems", r.stderr)
+        # A derived default names where it comes from.
+        r = run("check", self.write(LAB_CHECKPOINT_TRIAXIAL), "--set", "material.young=1e4")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("defaults to 1 + 2e4 / material.young", r.stderr)
+
     def test_output_folder_of_an_earlier_run_needs_overwrite(self):
         out = self.dir / "out"
         three = self.write(scene(3) + "vtk_every = 100\n", "s3.toml")

@@ -1,0 +1,11 @@
+// `geodem check SCENARIO`: every problem of the scenario in one pass (io/scenario_check.hpp),
+// sorted by line, with their count; a scene's grains are built too (clouds that cannot be
+// placed are input errors). The keys found bad are removed from l.root. Returns the exit code: 0
+// when the scenario is sound, 2 else.
+#pragma once
+
+#include <string>
+
+#include "io/scenario_file.hpp"
+
+int check_scenario(geodem::LoadedScenario& l, const std::string& file);
