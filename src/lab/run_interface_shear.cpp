@@ -116,10 +116,14 @@ struct InterfaceShear {
       const double unb = unbalanced_force_ratio(w);
       double load_error = 0.0;
       if (plate) load_error = std::abs(plate->pressure(w) / plate->target() - 1.0);
-      progress.update(stage, w.step, w.time, fraction(0.0),
-                      "unbalanced " + format_number(unb) +
-                          (plate ? ", plate load off by " + format_number(100.0 * load_error) + " %"
-                                 : std::string()));
+      progress.update(
+          stage, w.step, w.time, -1.0,
+          "unbalanced " + format_sig(unb) + " (at rest below " + format_sig(s.settle_unbalanced) +
+              ")" +
+              (plate ? ", plate load off by " + format_sig(100.0 * load_error) + " % (within " +
+                           format_sig(100.0 * s.consolidation_tolerance) + " %)"
+                     : std::string()),
+          fraction(0.0));
       if (k >= 5 * every && unb < s.settle_unbalanced && load_error < s.consolidation_tolerance &&
           !soil_moving(w, s.soil.density))
         return;
@@ -263,8 +267,9 @@ struct InterfaceShear {
       servo_error_sum += std::abs(pl / servo->target() - 1.0);
       sum_t = sum_n = sum_p = 0.0, steps = 0;
       while (next <= u + 1e-15) next += d_record;
-      progress.update(name + ": shear", w.step, w.time, fraction(u / s.max_displacement),
-                      "tau/sigma " + format_number(sig > 0.0 ? tau / sig : 0.0));
+      progress.update(name + ": shear", w.step, w.time, u / s.max_displacement,
+                      "tau/sigma " + format_sig(sig > 0.0 ? tau / sig : 0.0),
+                      fraction(u / s.max_displacement));
     }
     if (s.vtk) vtk.write(w);
     const InterfaceTest t = interface_test(c, s.residual_from);

@@ -74,7 +74,8 @@ struct Pullout {
   DepositCache deposit_cache;   // the foundation's deposit, shared with other runs
   bool deposit_loaded = false;  // this run's foundation came from the cache
   std::shared_ptr<SurfacePressure<2>> surcharge;
-  std::vector<double> moved;  // scratch of soil_displacement()
+  std::uint64_t layers_planned = 0;  // estimate of the stage's layers (progress only)
+  std::vector<double> moved;         // scratch of soil_displacement()
 
   // The run's own state, saved in checkpoints (visit_state).
   Phase phase = Phase::kFoundation;
@@ -213,9 +214,10 @@ struct Pullout {
       ++total_steps;
       if (w.measure_this_step) {
         const double unb = unbalanced_force_ratio(w);
-        progress.update(
-            stage, w.step, w.time, 0.0,
-            std::to_string(w.particles.size()) + " grains, unbalanced " + format_number(unb));
+        progress.update(stage, w.step, w.time, -1.0,
+                        std::to_string(w.particles.size()) + " grains, unbalanced " +
+                            format_sig(unb) + " (at rest below " + format_sig(s.settle_unbalanced) +
+                            ")");
         if (k % (5 * every) == 0) prep_row(stage_code, unb);
         if (k >= 5 * every && unb < s.settle_unbalanced && !soil_moving(w, s.soil.density)) {
           stage_step = 0;
@@ -240,11 +242,17 @@ struct Pullout {
         const double base = w.particles.size() == 0 ? 0.0 : top_of_grains(w);
         const double from = w.particles.size() == 0 ? 0.0 : surface(x0, x1);
         const double dense = std::min(s.layer_thickness, height - from + 2.0 * s.radius);
+        // Layers still to come, this one included (for the progress line; a layer settles
+        // to less than its thickness, so it is an estimate).
+        layers_planned = layer + static_cast<std::uint64_t>(
+                                     std::max(1.0, std::ceil((height - from) / s.layer_thickness)));
         drop_layer(w, s, s.file, kinds, areas, rng, x0, x1, base, dense);
         ++layer;
         in_settle = 1;
       }
-      settle(stage + " layer " + std::to_string(layer), stage_code);
+      settle(stage + " layer " + std::to_string(layer) +
+                 (layers_planned >= layer ? " of about " + std::to_string(layers_planned) : ""),
+             stage_code);
       in_settle = 0;
     }
     layer = 0;
@@ -417,7 +425,7 @@ struct Pullout {
         u.tension_steps = 0;
         while (u.next_record <= u.displacement) u.next_record += d_record;
         progress.update("pull", w.step, w.time, u.displacement / s.max_displacement,
-                        "T " + format_number(T) + " N/m");
+                        "T " + format_sig(T) + " N/m");
       }
       while (!u.profile_at.empty() && u.displacement >= u.profile_at.back() - 1e-12) {
         double arc = 0.0;

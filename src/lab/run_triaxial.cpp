@@ -160,9 +160,9 @@ struct Lab {
       ++total_steps;
       if (w.measure_this_step) {
         const double unb = unbalanced_force_ratio(w);
-        progress.update(stage, w.step, w.time, 0.0,
-                        "mean stress " + format_number(box.mean_stress(w)) + " Pa, porosity " +
-                            format_number(porosity()) + ", unbalanced " + format_number(unb));
+        progress.update(stage, w.step, w.time, -1.0,
+                        "mean stress " + format_sig(box.mean_stress(w)) + " Pa, porosity " +
+                            format_sig(porosity()) + ", unbalanced " + format_sig(unb));
         if (done(unb)) {
           stage_step = 0;
           return true;
@@ -462,8 +462,9 @@ struct Lab {
     h.curve.sigma3.push_back(s3);
     progress.update("compression " + std::to_string(test + 1) + "/" +
                         std::to_string(s.confining_stresses.size()),
-                    w.step, w.time, h.eps / s.max_axial_strain,
-                    "q " + format_number(s1 - s3) + " Pa");
+                    w.step, w.time, h.eps / s.max_axial_strain, "q " + format_sig(s1 - s3) + " Pa",
+                    (static_cast<double>(test) + h.eps / s.max_axial_strain) /
+                        static_cast<double>(s.confining_stresses.size()));
   }
 
   // The test's results; then the next confining stress, or the end.

@@ -171,7 +171,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
         const double fraction = std::max(
             w.time / duration, static_cast<double>(w.step) / static_cast<double>(max_steps));
         progress.update("scene", w.step, w.time, std::min(fraction, 1.0),
-                        "unbalanced " + format_number(unbalanced));
+                        "unbalanced " + format_sig(unbalanced), std::min(fraction, 1.0));
         if (w.time >= s.stop.min_time &&
             (s.stop.unbalanced_below > 0.0 || s.stop.kinetic_below > 0.0)) {
           const bool ub_ok = s.stop.unbalanced_below <= 0.0 || unbalanced < s.stop.unbalanced_below;
