@@ -117,7 +117,7 @@ int run_main(int argc, char** argv) {
                                         (geodem::comm::built_with_mpi() ? " (MPI)" : ""));
   app.require_subcommand(1);
 
-  std::string scenario, out_dir = "out", plot_dir, resume_dir;
+  std::string scenario, out_dir = "out", plot_dir, resume_dir, run_kind;
   std::vector<std::string> overrides;
   int threads = geodem::default_threads();
   bool quiet = false, overwrite = false;
@@ -143,6 +143,8 @@ int run_main(int argc, char** argv) {
   auto* check = app.add_subcommand("check", "validate a scenario without running it");
   check->add_option("scenario", scenario, "scenario file (TOML)")->required();
   check->add_option("--set", overrides, "override a scenario key");
+  check->add_option("--threads", threads, "a study's runs side by side, for its memory estimate")
+      ->check(CLI::Range(1, 1024));
 
   auto* plot = app.add_subcommand("plot", "(re)make the PNG plots of a finished run");
   plot->add_option("dir", plot_dir, "output folder of a run")->required();
@@ -164,7 +166,9 @@ int run_main(int argc, char** argv) {
       return geodem::make_plots(plot_dir, false) ? kOk : kFailure;
     }
     Loaded l = load(scenario, overrides);
-    if (*check) return check_scenario(l, scenario);
+    run_kind = l.kind;
+    if (*check) return check_scenario(l, scenario, threads);
+    check_run_memory(l, scenario, threads);
     geodem::RunOptions opt;
     opt.out_dir = out_dir;
     opt.quiet = quiet;
@@ -266,6 +270,22 @@ int run_main(int argc, char** argv) {
     std::fprintf(stderr, "unstable: %s\nthe outputs written so far are in %s\n", e.what(),
                  out_dir.c_str());
     return kUnstable;
+  } catch (const std::bad_alloc&) {
+    // The estimate let it start (io/memory_budget.hpp), but the machine ran out: say so,
+    // and leave a summary that says so beside the outputs written so far.
+    std::fprintf(stderr,
+                 "error: out of memory: the run needed more than the machine could give "
+                 "(lower the grain count, or --threads for a study); the outputs written so far "
+                 "are in %s\n",
+                 out_dir.c_str());
+    if (*run && std::filesystem::exists(out_dir)) {
+      try {
+        geodem::write_stopped_summary(out_dir, run_kind, nlohmann::json::object(), "failed",
+                                      "out of memory", "", threads);
+      } catch (...) {
+      }
+    }
+    return kFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kFailure;

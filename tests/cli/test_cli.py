@@ -343,6 +343,22 @@ create = "initial"
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertIn("defaults to 1 + 2e4 / material.young", r.stderr)
 
+    def test_a_run_too_large_for_the_memory_is_refused_with_its_estimate(self):
+        scenario = self.write(LAB_CHECKPOINT_TRIAXIAL)
+        out = self.dir / "big"
+        env = dict(os.environ, GEODEM_MEMORY_LIMIT="5e7")  # a 50 MB machine
+        for args in (["check", scenario, "--set", "sample.count=100000"],
+                     ["run", scenario, "--out", str(out), "--set", "sample.count=100000"]):
+            r = subprocess.run([GEODEM, *args], capture_output=True, text=True, env=env,
+                               timeout=60)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn("key 'sample.count': this run needs about", r.stderr)
+            self.assertIn("50 MB available", r.stderr)
+        self.assertFalse(out.exists())  # refused before anything was written
+        r = subprocess.run([GEODEM, "check", scenario], capture_output=True, text=True, env=env,
+                           timeout=60)
+        self.assertEqual(r.returncode, 0, r.stderr)  # 150 clumps fit
+
     def test_output_folder_of_an_earlier_run_needs_overwrite(self):
         out = self.dir / "out"
         three = self.write(scene(3) + "vtk_every = 100\n", "s3.toml")

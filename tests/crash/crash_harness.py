@@ -3,8 +3,9 @@
 compared with a run that was never interrupted.
 
 For each kind a small scenario is run once to the end (the reference, and its duration T).
-Then, for each kill, the same scenario is started into a fresh folder and SIGKILLed after
-a random fraction of T (so kills land in every stage, in output writes and in checkpoint
+Then the same scenario is started into fresh folders, each SIGKILLed after a random
+fraction of T, until `--kills` runs were killed (a run that ends before its kill is
+checked too, not counted) (so kills land in every stage, in output writes and in checkpoint
 writes: checkpoints are written every few hundred steps); a third of the runs is killed a
 second time while resuming. The folder is then finished the way a user would: `--resume`
 when it holds a checkpoint (a study: when it has begun its runs; it keeps the finished ones
@@ -275,10 +276,12 @@ class Harness:
         duration = time.monotonic() - t0
         expected = digests(ref)
         row = {"kind": name, "reference_s": duration, "kills": 0, "double": 0, "resumed": 0,
-               "rerun": 0, "identical": 0, "failures": []}
-        for k in range(kills):
+               "rerun": 0, "identical": 0, "runs": 0, "failures": []}
+        k = 0
+        while row["kills"] < kills and k < 3 * kills:  # kills that came after the end
+            k += 1                                      # are not counted
             out = folder / f"kill{k}"
-            at = self.rng.uniform(0.03, 1.0) * duration
+            at = self.rng.uniform(0.03, 0.97) * duration
             killed = self.run_killed(self.command(scenario, out), at)
             row["kills"] += killed
             if killed and self.rng.random() < 1 / 3 and (
@@ -286,6 +289,7 @@ class Harness:
                     (study and (out / "runs").is_dir())):
                 again = self.rng.uniform(0.1, 0.6) * duration
                 row["double"] += self.run_killed(self.command(scenario, out, resume=True), again)
+            row["runs"] += 1
             try:
                 how = self.finish(scenario, out, study) if killed else "finished"
                 row[how] = row.get(how, 0) + 1
@@ -312,13 +316,15 @@ def main():
     a = ap.parse_args()
     work = Path(a.keep) if a.keep else Path(tempfile.mkdtemp(prefix="geodem_crash_"))
     h = Harness(str(Path(a.geodem).resolve()), work, random.Random(a.seed), bool(a.keep))
-    print("| kind | reference run (s) | kills | killed twice | resumed | rerun | identical |")
-    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    print("| kind | reference run (s) | runs | killed | killed twice | resumed | rerun |"
+          " identical to the reference |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     failures = []
     for name in a.kinds.split(","):
         row = h.kind(name, a.kills)
-        print(f"| {name} | {row['reference_s']:.1f} | {row['kills']} | {row['double']} |"
-              f" {row['resumed']} | {row['rerun']} | {row['identical']} of {a.kills} |", flush=True)
+        print(f"| {name} | {row['reference_s']:.1f} | {row['runs']} | {row['kills']} |"
+              f" {row['double']} | {row['resumed']} | {row['rerun']} |"
+              f" {row['identical']} of {row['runs']} |", flush=True)
         failures += [f"{name}: {f}" for f in row["failures"]]
     for f in failures:
         print("FAILED", f)
