@@ -31,4 +31,4 @@ fi
 cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ \
   -DGEODEM_WITH_MPI=OFF -DGEODEM_BUILD_BENCHMARKS=OFF "${flags[@]}" > /dev/null
 cmake --build "$dir" -j "$(nproc)" --target geodem_validation_tests
-TSAN_OPTIONS=halt_on_error=1 "$dir/tests/geodem_validation_tests" --gtest_filter="$filter"
+TSAN_OPTIONS="halt_on_error=1 suppressions=$PWD/scripts/tsan.supp" "$dir/tests/geodem_validation_tests" --gtest_filter="$filter"

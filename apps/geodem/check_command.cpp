@@ -82,8 +82,13 @@ std::string read_settings(const std::string& kind, const toml::table& root, cons
   }
   const SceneSettings s = read_scene(root, file);
   double grains = static_cast<double>(s.particles.size());
-  for (const auto& c : s.clouds) grains += static_cast<double>(c.count);
-  check_memory(file, source_line(root, "clouds"), "clouds", s.dimension, grains);
+  std::size_t largest = 0;  // the cloud the message names
+  for (std::size_t k = 0; k < s.clouds.size(); ++k) {
+    grains += static_cast<double>(s.clouds[k].count);
+    if (s.clouds[k].count > s.clouds[largest].count) largest = k;
+  }
+  const std::string key = "clouds." + std::to_string(largest) + ".count";
+  check_memory(file, source_line(root, key), key, s.dimension, grains);
   if (build) {
     if (s.dimension == 2) {
       World<2> w;

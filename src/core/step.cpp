@@ -93,6 +93,14 @@ void update_timestep(World<D>& world) {
   }
 }
 
+// What to change about the time step, in the engine's terms (the runner names its keys).
+template <int D>
+std::string dt_advice(const World<D>& world) {
+  return world.auto_dt ? "lower the automatic time step's safety factor (now " +
+                             std::to_string(world.dt_safety) + ")"
+                       : "use the automatic time step, or a smaller fixed one";
+}
+
 template <int D>
 void check_finite(const World<D>& world) {
   const auto& P = world.particles;
@@ -104,8 +112,7 @@ void check_finite(const World<D>& world) {
           "non-finite state at step " + std::to_string(world.step) +
           " (t = " + std::to_string(world.time) + " s) on grain " + std::to_string(P.id[i]) +
           "; likely cause: time step too large for the contact stiffness (dt = " +
-          std::to_string(world.dt) +
-          " s): use time.step = \"auto\" or lower it, or lower the stiffness");
+          std::to_string(world.dt) + " s): " + dt_advice(world) + ", or lower the stiffness");
   }
   // Runaway motion: a contact that closes or slides by half a radius in one step is past
   // what the contact law resolves (the kinetic energy then grows without bound). Grains in
@@ -174,8 +181,8 @@ void check_finite(const World<D>& world) {
                              " on node " + std::to_string(i) +
                              " of the spar chains; likely cause: time step too large for the "
                              "chain's stiffness J or bending stiffness (dt = " +
-                             std::to_string(world.dt) +
-                             " s): use time.step = \"auto\", or raise the nodes' mass");
+                             std::to_string(world.dt) + " s): " + dt_advice(world) +
+                             ", or raise the nodes' mass");
 }
 
 template <int D>
@@ -196,7 +203,7 @@ template <int D>
       std::to_string(P.id[static_cast<std::size_t>(world.overlap_offender)]) + " and " + partner +
       " at step " + std::to_string(world.step) + " (t = " + std::to_string(world.time) +
       " s); likely cause: time step too large (dt = " + std::to_string(world.dt) +
-      " s; try time.step = \"auto\") or contact stiffness too low for the load");
+      " s: " + dt_advice(world) + ") or contact stiffness too low for the load");
 }
 
 template <int D>

@@ -29,8 +29,10 @@ bool remove_dotted_key(toml::table& root, const std::string& dotted) {
   }
   auto* table = node->as_table();
   if (!table || !table->contains(parts.back())) return false;
-  // A whole table is not removed: its own keys are what the reader checks.
-  if (table->get(parts.back())->is_table()) return false;
+  // A whole table, or array of tables, is not removed: its own keys are what the reader
+  // checks, and without it the reader would report it missing.
+  const toml::node* target = table->get(parts.back());
+  if (target->is_table() || target->is_array_of_tables()) return false;
   table->erase(parts.back());
   return true;
 }
@@ -45,8 +47,14 @@ ScenarioProblems find_scenario_problems(toml::table& root,
       read(root);
       break;
     } catch (const InputError& e) {
+      // The same key again: the reader misses the value just removed (a required key), a
+      // consequence of the search, not the user's problem.
+      if (!keys.insert(e.key()).second) {
+        found.complete = false;
+        break;
+      }
       found.errors.push_back(e);
-      if (e.key().empty() || !keys.insert(e.key()).second || !remove_dotted_key(root, e.key())) {
+      if (e.key().empty() || !remove_dotted_key(root, e.key())) {
         found.complete = false;
         break;
       }

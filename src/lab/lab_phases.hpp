@@ -24,7 +24,9 @@ void run_lab_phases(Runner& r, const std::string& kind, const nlohmann::json& re
   try {
     r.run_phases();
   } catch (const InstabilityError& e) {
-    const std::string why = r.checkpoints.diagnosis(e.what());
+    const std::string why = r.checkpoints.diagnosis(
+        std::string(e.what()) + " [" + kind +
+        " tests take the automatic time step: time.safety (default 0.8); the soil's young]");
     write_stopped_summary(opt.out_dir, kind, resolved, "unstable", why, r.checkpoints.last(),
                           opt.threads);
     throw InstabilityError(why);

@@ -365,9 +365,13 @@ nlohmann::json run_interface_shear(const InterfaceShearSettings& s, const RunOpt
     return summarise_interruption("interface_shear", s.resolved, opt,
                                   [&] { return run_tests(s, opt); });
   } catch (const InstabilityError& e) {
-    write_stopped_summary(opt.out_dir, "interface_shear", s.resolved, "unstable", e.what(), "",
+    const std::string why =
+        std::string(e.what()) +
+        " [interface shear tests take the automatic time step: time.safety (default 0.8); the "
+        "soil's young]";
+    write_stopped_summary(opt.out_dir, "interface_shear", s.resolved, "unstable", why, "",
                           opt.threads);
-    throw;
+    throw InstabilityError(why);
   }
 }
 

@@ -195,7 +195,9 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     if (status == "completed") check_finite(w);
   } catch (const InstabilityError& e) {
     status = "unstable";
-    message = checkpoints.diagnosis(e.what());
+    message = checkpoints.diagnosis(std::string(e.what()) +
+                                    " [the scenario's keys: time.step (seconds or \"auto\"), "
+                                    "time.safety, materials' young or kn]");
   }
   progress.finish();
   const double wall_s = elapsed();

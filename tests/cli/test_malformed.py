@@ -43,8 +43,10 @@ def read_cases():
 def check(path):
     """(exit code, stderr) of `geodem check PATH`; exit code None when it hung."""
     try:
+        # The same memory on every machine: a case too large for 16 GB is refused as such.
         r = subprocess.run([GEODEM, "check", str(path)], capture_output=True,
-                           timeout=TIMEOUT_S, cwd=path.parent)
+                           timeout=TIMEOUT_S, cwd=path.parent,
+                           env=dict(os.environ, GEODEM_MEMORY_LIMIT="16e9"))
     except subprocess.TimeoutExpired as e:
         return None, (e.stderr or b"").decode("utf-8", "replace")
     return r.returncode, r.stderr.decode("utf-8", "replace")

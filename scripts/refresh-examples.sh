@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Re-measures the examples' expected figures with the code as it is:
+#
+#   scripts/refresh-examples.sh [--all] [OUT]
+#
+# Runs the single-run examples (deposit2d, deposit3d, triaxial3d, biaxial2d, grain_shape2d;
+# about 3 minutes on 2 cores) into OUT (default runs/examples), compares the figures their
+# READMEs quote with the committed ones (examples/NAME/expected/numbers.json: a difference is
+# printed, and means the README's table must be updated too), then writes the new figures
+# and plots into expected/. With --all, also the pull-out, interface shear and study
+# examples' own refresh scripts (about an hour). Exit 1 when a figure changed.
+# CTest's examples.quick runs deposit2d and deposit3d and compares their figures.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+all=0
+if [[ "${1:-}" == "--all" ]]; then all=1; shift; fi
+OUT=${1:-runs/examples}
+changed=0
+for ex in deposit2d deposit3d triaxial3d biaxial2d grain_shape2d; do
+  dir="examples/$ex"
+  ./build/geodem run "$dir/scenario.toml" --out "$OUT/$ex" --overwrite --quiet --threads 1
+  if [[ -f "$dir/expected/numbers.json" ]] &&
+    ! python3 scripts/example_numbers.py "$OUT/$ex" --compare "$dir/expected/numbers.json"; then
+    changed=1
+  fi
+  python3 scripts/example_numbers.py "$OUT/$ex" > "$dir/expected/numbers.json"
+  for png in "$OUT/$ex"/*.png; do
+    [[ -f "$dir/expected/$(basename "$png")" ]] && cp "$png" "$dir/expected/"
+  done
+  echo "$ex: $(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['timing']['wall_s'])" \
+    "$OUT/$ex/summary.json") s"
+done
+if ((all)); then
+  examples/pullout2d/refresh_expected.sh "$OUT/pullout2d"
+  examples/interface_shear2d/refresh_expected.sh "$OUT/interface_shear2d"
+fi
+if ((changed)); then
+  echo "figures changed: update the examples' READMEs (and docs quoting them) from expected/numbers.json"
+fi
+exit "$changed"
