@@ -19,7 +19,8 @@ def numbers(run_dir):
     s = json.loads((Path(run_dir) / "summary.json").read_text())
     r = s["results"]
     if s["kind"] == "scene":
-        out = {k: r[k] for k in ("time", "steps", "total_weight", "coordination") if k in r}
+        out = {k: r[k] for k in ("time", "steps", "dt", "total_weight", "coordination", "porosity")
+               if k in r}
         for name, w in sorted(r.get("walls", {}).items()):
             out[f"wall {name} force"] = w["force"]
         return out
