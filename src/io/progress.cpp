@@ -49,22 +49,17 @@ std::string Progress::line(const std::string& stage, std::uint64_t step, double 
     run_f0_ = std::max(run_fraction, 0.0);
   }
   const double in_stage = now_s - stage_start_s_;
-  std::string out = stage + ":";
-  if (stage_fraction >= 0.0) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, " %.1f %%", 100.0 * std::min(stage_fraction, 1.0));
-    out += buf;
-    const double left = eta(stage_fraction, stage_f0_, in_stage);
-    if (left >= 0.0) out += ", ETA " + format_duration(left);
-  }
-  if (!extra.empty()) out += (stage_fraction >= 0.0 ? ", " : " ") + extra;
-  if (run_fraction >= 0.0) {
+  // "<lead>42.1 %, ETA 35 s": a percentage with `format`, and the ETA once measurable.
+  auto share = [&](const char* format, double f, double f0) {
     char buf[48];
-    std::snprintf(buf, sizeof buf, "; run %.0f %%", 100.0 * std::min(run_fraction, 1.0));
-    out += buf;
-    const double left = eta(run_fraction, run_f0_, in_stage);
-    if (left >= 0.0) out += ", ETA " + format_duration(left);
-  }
+    std::snprintf(buf, sizeof buf, format, 100.0 * std::min(f, 1.0));
+    const double left = eta(f, f0, in_stage);
+    return std::string(buf) + (left >= 0.0 ? ", ETA " + format_duration(left) : "");
+  };
+  std::string out = stage + ":";
+  if (stage_fraction >= 0.0) out += share(" %.1f %%", stage_fraction, stage_f0_);
+  if (!extra.empty()) out += (stage_fraction >= 0.0 ? ", " : " ") + extra;
+  if (run_fraction >= 0.0) out += share("; run %.0f %%", run_fraction, run_f0_);
   out += "; elapsed " + format_duration(now_s) + ", step " + std::to_string(step) + ", t " +
          format_sig(time) + " s";
   return out;

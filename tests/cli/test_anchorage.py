@@ -12,44 +12,10 @@ import tempfile
 import unittest
 from pathlib import Path
 
+from small_scenarios import shear
+
 GEODEM = None
 ROOT = None
-
-# A small shear box of two-disc clumps (about 100) on the sheet.
-SMALL_SHEAR = """
-kind = "interface_shear"
-seed = {seed}
-[box]
-length = 0.2
-height = 0.05
-base = "{base}"
-{lower}
-[soil]
-density = 2600.0
-young = 2e7
-kt_over_kn = 0.5
-friction_deg = 30.0
-grain = "pair_0.9"
-radius = 0.005
-deposit_friction_deg = 0.0
-[sheet]
-interface_friction_deg = {delta}
-stiffness_J = 1e6
-bending_stiffness = 0.1
-[shear]
-normal_stress = [10e3, 20e3]
-rate = 0.02
-max_displacement = {travel}
-history_points = 50
-[output]
-vtk = false
-"""
-
-
-def shear(delta=25.0, base="rigid", seed=1, travel=0.02):
-    lower = "lower_height = 0.05" if base == "soil" else ""
-    return SMALL_SHEAR.format(delta=delta, base=base, lower=lower, seed=seed, travel=travel)
-
 
 def run(*args, timeout=600):
     return subprocess.run([GEODEM, *args], capture_output=True, text=True, timeout=timeout)

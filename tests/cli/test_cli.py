@@ -16,66 +16,11 @@ import time
 import unittest
 from pathlib import Path
 
+from small_scenarios import (CHECKPOINT_SCENE, LAB_CHECKPOINT_TRIAXIAL, SMALL_PULLOUT,
+                             SMALL_SCENE)
+
 GEODEM = None
 ROOT = None
-
-SMALL_SCENE = """
-kind = "scene"
-dimension = {dim}
-[time]
-step = "auto"
-duration = 0.05
-[physics]
-gravity = {gravity}
-local_damping = 0.2
-[[materials]]
-name = "sand"
-young = 1e6
-friction = 0.5
-[[walls]]
-name = "floor"
-normal = {normal}
-area = 0.01
-[[clouds]]
-min = {lo}
-max = {hi}
-count = 50
-radius = 0.004
-[output]
-history_every = 50
-"""
-
-
-# A run-out anchor in a small frictional soil box (about 600 discs): the quick version of
-# the run-out comparison of docs/lab_tests.md. Interface friction (20 deg) well below the
-# soil's, and a front wall that keeps the cover in the box: the sheet slips out of the soil.
-SMALL_PULLOUT = """
-kind = "pullout"
-seed = 1
-[box]
-length = 0.8
-foundation = 0.12
-[soil]
-density = 2600.0
-young = 2e7
-friction_deg = 30.0
-radius = 0.008
-radius_fuzz = 0.25
-[anchor]
-shape = "{shape}"
-runout_length = 0.5
-cover = 0.1
-front = "wall"
-{trench}
-[sheet]
-stiffness_J = 1e5
-interface_friction_deg = 20.0
-[pull]
-rate = 0.02
-max_displacement = 0.03
-[analytic]
-soil_friction_deg = 30.0
-"""
 
 
 def scene(dim):
@@ -490,40 +435,6 @@ create = "initial"
         self.assertEqual(run("plot", str(self.dir / "nothing")).returncode, 2)
 
 
-# A bed of 3,000 spheres with rolling resistance (contact state beyond the spring), VTK
-# frames, and a checkpoint every 300 steps: about 3,300 steps, 2 s on one core.
-CHECKPOINT_SCENE = """
-kind = "scene"
-dimension = 3
-[time]
-step = "auto"
-duration = 0.3
-[physics]
-gravity = [0, 0, -9.81]
-local_damping = 0.2
-[[materials]]
-name = "sand"
-young = 1e6
-friction = 0.5
-rolling_friction = 0.1
-[[walls]]
-name = "floor"
-normal = [0, 0, 1]
-area = 0.01
-[[clouds]]
-min = [0, 0, 0]
-max = [0.1, 0.1, 0.1]
-count = 3000
-radius = 0.002
-[output]
-history_every = 20
-vtk_every = 500
-plots = false
-[checkpoint]
-every_steps = 300
-"""
-
-
 def history_without_wall_time(folder):
     with open(Path(folder) / "history.csv") as f:
         rows = list(csv.reader(f))
@@ -644,39 +555,6 @@ class CheckpointTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         s = json.loads((self.ref / "summary.json").read_text())
         self.assertAlmostEqual(s["results"]["time"], 0.32, delta=1e-3)
-
-
-# A small biaxial test that passes through every stage of the triaxial kind: clumps, rolling
-# resistance, cohesive bonds made after compaction, friction reduction to a target
-# porosity, two confining stresses (each from the prepared sample), VTK frames.
-LAB_CHECKPOINT_TRIAXIAL = """
-kind = "triaxial"
-dimension = 2
-seed = 3
-[sample]
-box = [0.4, 0.8]
-count = 150
-initial_porosity = 0.9
-grain = "pair_0.9"
-[material]
-density = 2650.0
-young = 1e8
-kt_over_kn = 0.5
-friction = 0.5
-rolling_friction = 0.1
-normal_cohesion = 5e4
-shear_cohesion = 5e4
-[compaction]
-confining_stress = 1e5
-target_porosity = 0.235  # below what compaction at full friction reaches: friction reduction runs
-[shear]
-strain_rate = 0.05
-max_axial_strain = 0.01
-confining_stress = [5e4, 1e5]
-vtk_at_strains = [0.005]
-[output]
-plots = false
-"""
 
 
 def output_digests(folder):

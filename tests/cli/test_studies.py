@@ -15,33 +15,10 @@ import time
 import unittest
 from pathlib import Path
 
+from small_scenarios import BASE
+
 GEODEM = None
 ROOT = None
-
-BASE = """
-dimension = 2
-seed = 1
-[sample]
-box = [0.4, 0.8]
-count = 100
-radius_fuzz = 0.25
-initial_porosity = 0.9
-[material]
-density = 2650.0
-young = 1e8
-kt_over_kn = 0.5
-friction_deg = 30.0
-[compaction]
-confining_stress = 1e5
-damping = 0.2
-[shear]
-strain_rate = 0.05
-max_axial_strain = 0.04
-confining_stress = [1e5]
-damping = 0.1
-[output]
-plots = false
-"""
 
 SERIES = 'kind = "series"\n' + BASE + """
 [series]

@@ -32,158 +32,23 @@ import tempfile
 import time
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "cli"))
+from small_scenarios import (BASE, CHECKPOINT_SCENE, LAB_CHECKPOINT_TRIAXIAL,  # noqa: E402
+                             SMALL_PULLOUT, shear)
+
 CHECKPOINT = "\n[checkpoint]\nevery_steps = {every}\nkeep = 2\n"
 
-SCENE = """
-kind = "scene"
-dimension = 3
-seed = 2
-[time]
-step = "auto"
-duration = 0.25
-[physics]
-gravity = [0, 0, -9.81]
-local_damping = 0.2
-[[materials]]
-name = "sand"
-young = 1e6
-friction = 0.5
-rolling_friction = 0.1
-[[walls]]
-name = "floor"
-normal = [0, 0, 1]
-area = 0.01
-[[clouds]]
-min = [0, 0, 0]
-max = [0.1, 0.1, 0.1]
-count = 2000
-radius = 0.002
-[output]
-history_every = 20
-vtk_every = 400
-plots = false
-"""
-
-TRIAXIAL = """
-kind = "triaxial"
-dimension = 2
-seed = 3
-[sample]
-box = [0.4, 0.8]
-count = 150
-initial_porosity = 0.9
-grain = "pair_0.9"
-[material]
-density = 2650.0
-young = 1e8
-kt_over_kn = 0.5
-friction = 0.5
-rolling_friction = 0.1
-normal_cohesion = 5e4
-shear_cohesion = 5e4
-[compaction]
-confining_stress = 1e5
-target_porosity = 0.235
-[shear]
-strain_rate = 0.05
-max_axial_strain = 0.01
-confining_stress = [5e4, 1e5]
-vtk_at_strains = [0.005]
-[output]
-plots = false
-"""
-
-PULLOUT = """
-kind = "pullout"
-seed = 1
-[box]
-length = 0.8
-foundation = 0.12
-[soil]
-density = 2600.0
-young = 2e7
-friction_deg = 30.0
-radius = 0.008
-[anchor]
-shape = "L"
-runout_length = 0.5
-cover = 0.1
-front = "free"
-trench_depth = 0.05
-[sheet]
-stiffness_J = 1e5
-interface_friction_deg = 20.0
-[surcharge]
-pressure = 2000.0
-[pull]
-rate = 0.02
-max_displacement = 0.01
-[analytic]
-soil_friction_deg = 30.0
-[output]
-plots = false
-"""
-
-SERIES = """
-kind = "series"
-dimension = 2
-seed = 1
-[sample]
-box = [0.4, 0.8]
-count = 100
-radius_fuzz = 0.25
-initial_porosity = 0.9
-[material]
-density = 2650.0
-young = 1e8
-kt_over_kn = 0.5
-friction_deg = 30.0
-[compaction]
-confining_stress = 1e5
-damping = 0.2
-[shear]
-strain_rate = 0.05
-max_axial_strain = 0.02
-confining_stress = [1e5]
-damping = 0.1
-[output]
-plots = false
-[series]
-counts = [60, 120]
-seeds = 2
-tolerance = 0.05
-"""
-
-SHEAR = """
-kind = "interface_shear"
-seed = 1
-[box]
-length = 0.2
-height = 0.05
-base = "soil"
-lower_height = 0.05
-[soil]
-density = 2600.0
-young = 2e7
-kt_over_kn = 0.5
-friction_deg = 30.0
-grain = "pair_0.9"
-radius = 0.005
-deposit_friction_deg = 0.0
-[sheet]
-interface_friction_deg = 25.0
-stiffness_J = 1e6
-bending_stiffness = 0.1
-[shear]
-normal_stress = [10e3, 20e3]
-rate = 0.02
-max_displacement = 0.02
-history_points = 50
-[output]
-vtk = false
-plots = false
-"""
-
+SCENE = CHECKPOINT_SCENE.split("[checkpoint]")[0]  # the harness sets its own period
+TRIAXIAL = LAB_CHECKPOINT_TRIAXIAL
+# An L anchor with a free front face under a surcharge plate: every stage of the kind.
+PULLOUT = (SMALL_PULLOUT.format(shape="L", trench="trench_depth = 0.05")
+           .replace('front = "wall"', 'front = "free"')
+           .replace("[pull]", "[surcharge]\npressure = 2000.0\n[pull]")
+           .replace("max_displacement = 0.03", "max_displacement = 0.01")
+           + "[output]\nplots = false\n")
+SHEAR = shear(base="soil").replace("vtk = false", "vtk = false\nplots = false")
+SERIES = ('kind = "series"\n' + BASE.replace("max_axial_strain = 0.04", "max_axial_strain = 0.02")
+          + "[series]\ncounts = [60, 120]\nseeds = 2\ntolerance = 0.05\n")
 PULLOUT_SEEDS = PULLOUT.replace("seed = 1", "seed = 1\nseeds = 2").replace(
     "max_displacement = 0.01", "max_displacement = 0.004")
 
