@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "io/output_files.hpp"
 #include "scene/scene_settings.hpp"
 
 namespace geodem {
@@ -40,8 +41,20 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
     g.trench_depth = a->positive("trench_depth", 0.5 * s.foundation);
     if (g.trench_depth >= s.foundation)
       a->fail("trench_depth", "the trench must be shallower than box.foundation");
+    const bool width_given = a->has("trench_width");
     g.trench_width =
         a->positive("trench_width", g.shape == "V" ? 2.0 * g.trench_depth : 0.5 * g.trench_depth);
+    // The trench is filled by layers dropped into it: it must be wider than the largest
+    // grain (a two-disc clump spans about 4 radii).
+    const double grain = 2.0 * s.radius * (1.0 + s.radius_fuzz) * (s.grains.round_only() ? 1 : 2);
+    if (g.trench_width < grain)
+      a->fail("trench_width",
+              (width_given ? std::string("is")
+                           : "defaults to " + std::string(g.shape == "V" ? "2" : "0.5") +
+                                 " x trench_depth =") +
+                  " " + format_number(g.trench_width) + " m, narrower than the largest grain (" +
+                  format_number(grain) +
+                  " m): the trench cannot be filled; widen it or use smaller grains");
   }
   const double end_x = g.runout_length + g.trench_width;
   if (end_x >= s.box_length)

@@ -424,6 +424,8 @@ create = "initial"
         self.assertBadInput(text, "trench_width", "inside the box")
         self.assertBadInput(SMALL_PULLOUT.format(shape="runout", trench="").replace(
             "cover = 0.1", "cover = 0.01"), "anchor.cover", "grain diameter")
+        text = SMALL_PULLOUT.format(shape="L", trench="trench_depth = 0.02")  # 10 mm wide
+        self.assertBadInput(text, "anchor.trench_width", "narrower than the largest grain")
 
     def test_plot_command(self):
         out = self.dir / "out"

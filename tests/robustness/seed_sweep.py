@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Robustness sweep: every lab kind, small, over many seeds; no run may fail.
 
-    tests/robustness/seed_sweep.py GEODEM [--seeds 200] [--jobs 2] [--kinds a,b]
+    tests/robustness/seed_sweep.py GEODEM [--seeds 200] [--jobs 2] [--kinds "a;b"]
 
 Each case is a small scenario run with seed = 1 .. N (`--set seed=K`); a run fails when
 geodem exits with anything but 0. Prints a table (kind, seeds, failures, run time) and each
@@ -68,11 +68,15 @@ CASES = {
     "biaxial 2D clumps, rolling, friction reduction": biaxial(
         grain='grain = "pair_0.9"', rolling=0.1, target="target_porosity = 0.235"),
     "biaxial 2D clumps, bonds": biaxial(grain='grain = "pair_0.9"', cohesion=5e4),
-    "triaxial 3D spheres": biaxial(dim=3, count=200),
-    "triaxial 3D clumps, rolling": biaxial(dim=3, count=150, grain='grain = "pair_0.9"',
-                                           rolling=0.1),
+    "triaxial 3D spheres": biaxial(dim=3, count=150).replace("max_axial_strain = 0.02",
+                                                            "max_axial_strain = 0.01"),
+    "triaxial 3D clumps, rolling": biaxial(dim=3, count=80, grain='grain = "pair_0.9"',
+                                           rolling=0.1).replace(
+        "initial_porosity = 0.9", "initial_porosity = 0.95").replace(
+        "max_axial_strain = 0.02", "max_axial_strain = 0.01"),
     "pull-out 2D run-out": PULLOUT.format(shape="runout", trench=""),
-    "pull-out 2D L, clumps": PULLOUT.format(shape="L", trench="trench_depth = 0.04").replace(
+    "pull-out 2D L, clumps": PULLOUT.format(
+        shape="L", trench="trench_depth = 0.04\ntrench_width = 0.06").replace(
         "radius_fuzz = 0.25", 'radius_fuzz = 0.25\ngrain = "pair_0.9"'),
 }
 
@@ -91,10 +95,10 @@ def main():
     ap.add_argument("geodem")
     ap.add_argument("--seeds", type=int, default=200)
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--kinds", help="names of CASES, comma-separated (default: all)")
+    ap.add_argument("--kinds", help="names of CASES, separated by ';' (default: all)")
     a = ap.parse_args()
     geodem = str(Path(a.geodem).resolve())
-    names = a.kinds.split(",") if a.kinds else list(CASES)
+    names = a.kinds.split(";") if a.kinds else list(CASES)
     print("| case | seeds | failures | run time (s), median (max) |")
     print("| --- | ---: | ---: | ---: |")
     failures = []
