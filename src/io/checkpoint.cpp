@@ -70,27 +70,28 @@ std::string checkpoint_folder(const std::string& out_dir) {
   return out_dir + "/checkpoint";
 }
 
-void write_checkpoint_file(const std::string& path, const Checkpoint& c) {
-  // The payload is the archive of (kind, dimension, step, time, scenario, runner, world),
-  // written in pieces so that the world's bytes are not copied once more: the small fields
-  // and each string's length prefix, then the runner's and the world's bytes as they are.
+void write_checkpoint_file(const std::string& path, const Checkpoint& c,
+                           const std::function<void(StateWriter&)>& save_world) {
+  // The payload is the archive of (kind, dimension, step, time, scenario, runner, world):
+  // the small fields and each string's length prefix, then the runner's bytes as they are,
+  // then the world's, streamed into the file (a first pass counts them for the length).
+  StateWriter counter([](const char*, std::size_t) {});
+  save_world(counter);
+  const std::uint64_t world_size = counter.size();
   StateWriter small, runner_len, world_len;
   small(c.kind), small(c.dimension), small(c.step), small(c.time), small(c.scenario);
   runner_len(static_cast<std::uint64_t>(c.runner.size()));
-  world_len(static_cast<std::uint64_t>(c.world.size()));
-  const std::string* pieces[] = {&small.bytes(), &runner_len.bytes(), &c.runner, &world_len.bytes(),
-                                 &c.world};
-  std::uint64_t length = 0;
-  uLong crc = crc32_z(0L, Z_NULL, 0);
-  for (const std::string* piece : pieces) {
-    length += piece->size();
-    crc = crc32_z(crc, reinterpret_cast<const Bytef*>(piece->data()),
-                  static_cast<z_size_t>(piece->size()));
-  }
+  world_len(world_size);
+  const std::string* pieces[] = {&small.bytes(), &runner_len.bytes(), &c.runner,
+                                 &world_len.bytes()};
+  std::uint64_t length = world_size;
+  for (const std::string* piece : pieces) length += piece->size();
 
   std::string head(kMagic, sizeof kMagic);
   auto put = [&head](const auto& v) { head.append(reinterpret_cast<const char*>(&v), sizeof v); };
-  put(kFormatVersion), put(kMachineMark), put(length), put(static_cast<std::uint32_t>(crc));
+  put(kFormatVersion), put(kMachineMark), put(length);
+  const auto crc_at = static_cast<std::streamoff>(head.size());
+  put(std::uint32_t{0});  // the checksum, written once the payload has gone through
 
   // A temporary name of this process alone: runs side by side may write the same file.
   const fs::path target(path);
@@ -101,8 +102,19 @@ void write_checkpoint_file(const std::string& path, const Checkpoint& c) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot write " + tmp);
     out.write(head.data(), static_cast<std::streamsize>(head.size()));
-    for (const std::string* piece : pieces)
-      out.write(piece->data(), static_cast<std::streamsize>(piece->size()));
+    uLong crc = crc32_z(0L, Z_NULL, 0);
+    auto emit = [&](const char* p, std::size_t n) {
+      crc = crc32_z(crc, reinterpret_cast<const Bytef*>(p), static_cast<z_size_t>(n));
+      out.write(p, static_cast<std::streamsize>(n));
+    };
+    for (const std::string* piece : pieces) emit(piece->data(), piece->size());
+    StateWriter world(emit);
+    save_world(world);
+    if (world.size() != world_size)
+      throw std::logic_error("a checkpoint's world gave two sizes in its two passes");
+    const auto sum = static_cast<std::uint32_t>(crc);
+    out.seekp(crc_at);
+    out.write(reinterpret_cast<const char*>(&sum), sizeof sum);
     out.flush();
     if (!out) throw std::runtime_error("error writing " + tmp + " (disk full?)");
   }
@@ -112,14 +124,23 @@ void write_checkpoint_file(const std::string& path, const Checkpoint& c) {
   sync_path(folder, true);
 }
 
+void write_checkpoint_file(const std::string& path, const Checkpoint& c) {
+  write_checkpoint_file(path, c, [&c](StateWriter& w) { w.raw(c.world); });
+}
+
 std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep) {
+  return write_checkpoint(out_dir, c, keep, [&c](StateWriter& w) { w.raw(c.world); });
+}
+
+std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep,
+                             const std::function<void(StateWriter&)>& save_world) {
   const std::string folder = checkpoint_folder(out_dir);
   fs::create_directories(folder);
   char name[64];
   std::snprintf(name, sizeof name, "checkpoint_%012llu.bin",
                 static_cast<unsigned long long>(c.step));
   const std::string path = folder + "/" + name;
-  write_checkpoint_file(path, c);
+  write_checkpoint_file(path, c, save_world);
 
   const auto files = checkpoint_files(folder);
   for (std::size_t k = static_cast<std::size_t>(std::max(keep, 1)); k < files.size(); ++k) {

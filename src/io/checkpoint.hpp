@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,9 +43,19 @@ std::string checkpoint_folder(const std::string& out_dir);
 // renamed): a crash leaves the previous file or the new one whole.
 void write_checkpoint_file(const std::string& path, const Checkpoint& c);
 
+// The same, with the world part written by save_world(StateWriter&) straight into the
+// file (c.world is ignored): a first pass counts its bytes, a second streams them, so no
+// copy of the world is held in memory. The file is byte for byte the one
+// write_checkpoint_file would write.
+void write_checkpoint_file(const std::string& path, const Checkpoint& c,
+                           const std::function<void(StateWriter&)>& save_world);
+
 // Writes the checkpoint atomically into out_dir's checkpoint folder and keeps the `keep` newest
 // files; returns its path.
 std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep);
+// The same with a streamed world (above).
+std::string write_checkpoint(const std::string& out_dir, const Checkpoint& c, int keep,
+                             const std::function<void(StateWriter&)>& save_world);
 
 // The newest valid checkpoint of out_dir; each file skipped as invalid is reported in
 // `skipped` ("name: reason"). Throws CheckpointError when there is none.

@@ -49,15 +49,20 @@ Checkpoint RunCheckpoints::resume(const std::string& scenario_file,
 
 const std::string& RunCheckpoints::write(std::uint64_t step, double time, std::string runner,
                                          std::string world) {
+  return write_streamed(step, time, std::move(runner), [&world](StateWriter& w) { w.raw(world); });
+}
+
+const std::string& RunCheckpoints::write_streamed(
+    std::uint64_t step, double time, std::string runner,
+    const std::function<void(StateWriter&)>& save_world) {
   // The order that makes a crash at any moment recoverable: every row the checkpoint
   // counts, and every file renamed into the folder (VTK frames, the .pvd), on disk first;
   // then the checkpoint, itself written aside and renamed.
   for (HistoryCsv* f : outputs_) f->sync();
   sync_to_disk(out_dir_, true);
   sync_to_disk(out_dir_ + "/vtk", true);
-  Checkpoint c{kind_, dimension_, step, time, resolved_.dump(), std::move(runner), std::move(world),
-               ""};
-  last_ = write_checkpoint(out_dir_, c, spec_.keep);
+  Checkpoint c{kind_, dimension_, step, time, resolved_.dump(), std::move(runner), "", ""};
+  last_ = write_checkpoint(out_dir_, c, spec_.keep, save_world);
   last_step_ = step;
   last_wall_ = elapsed();
   return last_;

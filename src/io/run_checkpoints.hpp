@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -61,17 +62,28 @@ class RunCheckpoints {
   // the output folder are on disk; returns its path.
   const std::string& write(std::uint64_t step, double time, std::string runner, std::string world);
 
+  // The same with the world streamed into the file (no copy of the state in memory while a
+  // checkpoint is written): save(StateWriter& runner, StateWriter& world) is called three
+  // times (the runner's part kept from the first, the world's counted, then streamed) and
+  // must give the same bytes each time.
+  template <class Save>
+  const std::string& write_with(std::uint64_t step, double time, Save&& save) {
+    auto discard = [](const char*, std::size_t) {};
+    StateWriter runner, no_world(discard);
+    save(runner, no_world);
+    return write_streamed(step, time, std::move(runner.bytes()), [&](StateWriter& world) {
+      StateWriter no_runner(discard);
+      save(no_runner, world);
+    });
+  }
+
   // For run loops after a whole step: writes a checkpoint when one is due or a signal has
   // come, then stops on the signal (throws Interrupted naming the checkpoint).
   // save(StateWriter& runner, StateWriter& world) fills the two parts.
   template <class Save>
   void after_step(std::uint64_t step, double time, Save&& save) {
     const int signal = interrupt_signal();
-    if (signal || due(step)) {
-      StateWriter runner, world;
-      save(runner, world);
-      write(step, time, std::move(runner.bytes()), std::move(world.bytes()));
-    }
+    if (signal || due(step)) write_with(step, time, save);
     if (signal) throw Interrupted{signal, last_};
   }
 
@@ -87,6 +99,8 @@ class RunCheckpoints {
   const CheckpointSpec& spec() const { return spec_; }
 
  private:
+  const std::string& write_streamed(std::uint64_t step, double time, std::string runner,
+                                    const std::function<void(StateWriter&)>& save_world);
   using Clock = std::chrono::steady_clock;
   std::string kind_;
   int dimension_;

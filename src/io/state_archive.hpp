@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -49,6 +50,14 @@ inline constexpr bool kPlainData = IsPlainData<T>::value;
 class StateWriter {
  public:
   static constexpr bool kLoading = false;
+  // Where streamed bytes go (a file, a checksum, nowhere: a count).
+  using Sink = std::function<void(const char*, std::size_t)>;
+
+  StateWriter() = default;
+  // Streams the bytes to `sink` instead of keeping them: bytes() stays empty, size()
+  // counts them. A checkpoint's world goes this way, so that writing one needs no second
+  // copy of the state in memory.
+  explicit StateWriter(Sink sink) : sink_(std::move(sink)) {}
 
   template <typename T>
   void operator()(const T& v) {
@@ -67,12 +76,23 @@ class StateWriter {
     append(&n, sizeof n);
     append(s.data(), s.size());
   }
+  // Bytes as they are (no length prefix): an archive already made.
+  void raw(const std::string& s) { append(s.data(), s.size()); }
   const std::string& bytes() const { return bytes_; }
   std::string& bytes() { return bytes_; }
+  std::uint64_t size() const { return size_; }
 
  private:
-  void append(const void* p, std::size_t n) { bytes_.append(static_cast<const char*>(p), n); }
+  void append(const void* p, std::size_t n) {
+    size_ += n;
+    if (sink_)
+      sink_(static_cast<const char*>(p), n);
+    else
+      bytes_.append(static_cast<const char*>(p), n);
+  }
   std::string bytes_;
+  Sink sink_;
+  std::uint64_t size_ = 0;
 };
 
 class StateReader {

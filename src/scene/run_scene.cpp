@@ -110,11 +110,11 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
 
   auto elapsed = [&checkpoints] { return checkpoints.elapsed(); };
   auto checkpoint = [&] {
-    StateWriter runner, world;
-    runner(bonds_created), runner(elapsed()), runner(finished), runner(stop_reason);
-    vtk.save(runner);
-    save_world_state(world, w);
-    checkpoints.write(w.step, w.time, std::move(runner.bytes()), std::move(world.bytes()));
+    checkpoints.write_with(w.step, w.time, [&](StateWriter& runner, StateWriter& world) {
+      runner(bonds_created), runner(elapsed()), runner(finished), runner(stop_reason);
+      vtk.save(runner);
+      save_world_state(world, w);
+    });
   };
   auto record = [&]() {
     const double wall_now = elapsed();
