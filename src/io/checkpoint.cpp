@@ -1,6 +1,5 @@
 #include "io/checkpoint.hpp"
 
-#include <fcntl.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -9,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+
+#include "io/output_files.hpp"
 
 namespace geodem {
 
@@ -55,13 +56,6 @@ std::vector<fs::path> checkpoint_files(const std::string& folder) {
   std::vector<fs::path> out;
   for (auto& f : found) out.push_back(f.second);
   return out;
-}
-
-void sync_path(const std::string& path, bool directory) {
-  const int fd = ::open(path.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
-  if (fd < 0) return;
-  (void)::fsync(fd);
-  ::close(fd);
 }
 
 }  // namespace
@@ -118,10 +112,10 @@ void write_checkpoint_file(const std::string& path, const Checkpoint& c,
     out.flush();
     if (!out) throw std::runtime_error("error writing " + tmp + " (disk full?)");
   }
-  sync_path(tmp, false);  // the data on disk before the name points to it
+  sync_to_disk(tmp, false);  // the data on disk before the name points to it
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
     throw std::runtime_error("cannot rename " + tmp + " to " + path);
-  sync_path(folder, true);
+  sync_to_disk(folder, true);
 }
 
 void write_checkpoint_file(const std::string& path, const Checkpoint& c) {

@@ -47,11 +47,6 @@ Checkpoint RunCheckpoints::resume(const std::string& scenario_file,
   return c;
 }
 
-const std::string& RunCheckpoints::write(std::uint64_t step, double time, std::string runner,
-                                         std::string world) {
-  return write_streamed(step, time, std::move(runner), [&world](StateWriter& w) { w.raw(world); });
-}
-
 const std::string& RunCheckpoints::write_streamed(
     std::uint64_t step, double time, std::string runner,
     const std::function<void(StateWriter&)>& save_world) {

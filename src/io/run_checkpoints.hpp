@@ -58,12 +58,9 @@ class RunCheckpoints {
   // checkpoint never counts a row a crash can lose).
   void outputs(std::vector<HistoryCsv*> files) { outputs_ = std::move(files); }
 
-  // Writes a checkpoint of the runner's state and the world's, after the outputs' rows and
-  // the output folder are on disk; returns its path.
-  const std::string& write(std::uint64_t step, double time, std::string runner, std::string world);
-
-  // The same with the world streamed into the file (no copy of the state in memory while a
-  // checkpoint is written): save(StateWriter& runner, StateWriter& world) is called three
+  // Writes a checkpoint, after the outputs' rows and the output folder are on disk, with
+  // the world streamed into the file (no copy of the state in memory while a checkpoint is
+  // written); returns its path. save(StateWriter& runner, StateWriter& world) is called three
   // times (the runner's part kept from the first, the world's counted, then streamed) and
   // must give the same bytes each time.
   template <class Save>

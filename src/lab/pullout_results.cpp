@@ -18,7 +18,7 @@ constexpr std::size_t kBackWall = 2;  // in World::walls (floor, front, back)
 }  // namespace
 
 void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0, double top,
-                double sigma_q, double macro_interface_deg) {
+                double sigma_q) {
   using Vec = Dim<2>::Vec;
   const auto& P = w.particles;
   const std::size_t n = P.size();
@@ -57,8 +57,9 @@ void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0,
   const double K = s.earth_pressure_measured             ? u.K_wall
                    : s.earth_pressure_coefficient >= 0.0 ? s.earth_pressure_coefficient
                                                          : u.K_jaky;
-  u.est = slip_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(macro_interface_deg * kDeg), K,
-                        u.runout_load, s.interface_adhesion);
+  u.est =
+      slip_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(s.macro_interface_deg() * kDeg), K,
+                    u.runout_load, s.interface_adhesion);
   u.est_soil =
       soil_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(s.soil_friction_deg * kDeg),
                     s.soil_cohesion, K, u.runout_load);
@@ -85,7 +86,7 @@ double anchoring_soil_displacement(const Pull& u, const World<2>& w, bool median
 }
 
 void pull_results(const Pull& u, const World<2>& w, const PulloutSettings& s,
-                  double macro_interface_deg, nlohmann::json& results) {
+                  nlohmann::json& results) {
   std::vector<double> scratch;
   const double soil_mean = anchoring_soil_displacement(u, w, false, scratch);
   results["soil_displacement_mean"] = soil_mean;
@@ -123,7 +124,7 @@ void pull_results(const Pull& u, const World<2>& w, const PulloutSettings& s,
                          {"K", u.est.K},
                          {"K_jaky", u.K_jaky},
                          {"K_wall", u.K_wall},
-                         {"interface_friction_deg", macro_interface_deg},
+                         {"interface_friction_deg", s.macro_interface_deg()},
                          {"interface_adhesion", s.interface_adhesion},
                          {"soil_friction_deg", s.soil_friction_deg},
                          {"soil_cohesion", s.soil_cohesion},

@@ -70,7 +70,7 @@ inline const std::vector<std::string> kProfileColumns = {"displacement", "s", "t
 // the macroscopic interface friction) and the grains next to the sheet. `y0` is the
 // run-out level, `top` the cover's surface, `sigma_q` the surcharge.
 void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0, double top,
-                double sigma_q, double macro_interface_deg);
+                double sigma_q);
 
 // Displacement of the anchoring soil towards the pull: the mean, or the median (which
 // grains that roll off a free face far from the anchor do not pull up).
@@ -80,7 +80,7 @@ double anchoring_soil_displacement(const Pull& u, const World<2>& w, bool median
 // The estimates, the mechanism, the analytic terms and the soil's displacement of a
 // finished pull, with the counts of the final world `w`, into `results`.
 void pull_results(const Pull& u, const World<2>& w, const PulloutSettings& s,
-                  double macro_interface_deg, nlohmann::json& results);
+                  nlohmann::json& results);
 
 // Grains (id, x, y, radius, column: the band each grain was in when the pull started) and
 // the sheet's nodes (with the tension of the element that starts there).

@@ -58,6 +58,12 @@ struct PulloutSettings : DepositedSoil, SheetSettings, DepositTime {
   // Macroscopic interface friction and adhesion, as an interface shear test measures them
   // (< 0: the sheet's local interface friction; docs/lab_tests.md, "Interface shear").
   double interface_macro_friction_deg = -1.0;
+  // The interface friction of the slippage estimate: the macroscopic one when given, else
+  // the sheet's local one.
+  double macro_interface_deg() const {
+    return interface_macro_friction_deg >= 0.0 ? interface_macro_friction_deg
+                                               : interface_friction_deg;
+  }
   double interface_adhesion = 0.0;
   // [time]: DepositTime
   // [output]

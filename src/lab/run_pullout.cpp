@@ -103,11 +103,6 @@ struct Pullout {
 
   double elapsed() const { return checkpoints.elapsed(); }
   std::string prep_path() const { return opt.out_dir + "/preparation.csv"; }
-  // The interface friction of the slippage estimate: the macroscopic one when given.
-  double macro_interface_deg() const {
-    return s.interface_macro_friction_deg >= 0.0 ? s.interface_macro_friction_deg
-                                                 : s.interface_friction_deg;
-  }
 
   template <class Archive>
   void visit_state(Archive& a) {
@@ -173,8 +168,7 @@ struct Pullout {
     }
   }
 
-  // Rebuilt from the scenario (build()), then the newest valid checkpoint's state: the
-  // sheet and the surcharge plate are put back first when they were there.
+  // build(), then the newest valid checkpoint: the sheet and surcharge plate laid first.
   void resume() {
     const Checkpoint c = checkpoints.resume(s.file, {});
     StateReader in(c.runner.data(), c.runner.size());
@@ -195,11 +189,9 @@ struct Pullout {
     checkpoints.resume_clock(wall_before);
   }
 
-  double surface(double x0, double x1) const { return surface_level(w, x0, x1); }
-
   void prep_row(double stage, double unb) {
     prep_csv.row({stage, static_cast<double>(w.step), w.time,
-                  static_cast<double>(w.particles.size()), surface(0.0, s.box_length), unb,
+                  static_cast<double>(w.particles.size()), surface_level(w, 0.0, s.box_length), unb,
                   kinetic_energy(w)});
   }
 
@@ -238,9 +230,9 @@ struct Pullout {
                   double stage_code) {
     for (;;) {
       if (!in_settle) {
-        if (!(w.particles.size() == 0 || surface(x0, x1) < height)) break;
+        if (!(w.particles.size() == 0 || surface_level(w, x0, x1) < height)) break;
         const double base = w.particles.size() == 0 ? 0.0 : top_of_grains(w);
-        const double from = w.particles.size() == 0 ? 0.0 : surface(x0, x1);
+        const double from = w.particles.size() == 0 ? 0.0 : surface_level(w, x0, x1);
         const double dense = std::min(s.layer_thickness, height - from + 2.0 * s.radius);
         // Layers still to come, this one included (for the progress line; a layer settles
         // to less than its thickness, so it is an estimate).
@@ -372,7 +364,7 @@ struct Pullout {
     prep["time"] = w.time;
     Pull& u = pull;
     for (std::size_t i = 0; i < P.size(); ++i) P.id[i] = static_cast<std::uint32_t>(i);
-    start_pull(u, w, s, y0, top, surcharge ? surcharge->pressure(w) : 0.0, macro_interface_deg());
+    start_pull(u, w, s, y0, top, surcharge ? surcharge->pressure(w) : 0.0);
     write_pullout_states(opt.out_dir + "/states/grains_initial.csv",
                          opt.out_dir + "/states/sheet_initial.csv", w, u.column);
     if (s.vtk) vtk.write(w);
@@ -492,7 +484,7 @@ nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt)
 
   nlohmann::json results;
   results["preparation"] = run.prep;
-  pull_results(u, w, s, run.macro_interface_deg(), results);
+  pull_results(u, w, s, results);
   results["sheet"]["node_mass_factor"] = run.node_mass_factor;
   return write_run_summary(opt.out_dir, "pullout", "completed", s.resolved, results,
                            timing_json(w, run.elapsed(), run.total_steps, opt.threads));

@@ -23,6 +23,7 @@
 #include "lab/lab_box.hpp"
 #include "lab/lab_phases.hpp"
 #include "lab/soil_parameters.hpp"
+#include "lab/triaxial_test_state.hpp"
 #include "measure/measurements.hpp"
 #include "scene/random_cloud.hpp"
 
@@ -31,12 +32,6 @@ namespace geodem {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-
-// Diameter of the disc (2D) or sphere (3D) of volume v: the grain size d0 of a sample.
-template <int D>
-double equivalent_diameter(double v) {
-  return D == 2 ? 2.0 * std::sqrt(v / std::numbers::pi) : std::cbrt(6.0 * v / std::numbers::pi);
-}
 
 // The stages of the test, in order. A checkpoint records the stage and the loop
 // counters within it; the run goes on from there on resuming.
@@ -48,25 +43,6 @@ enum class Phase : std::uint8_t {
   kConsolidationMore,  // stresses off target: up to compaction.max_steps more
   kCompression,        // strain-controlled axial loading
   kDone
-};
-
-// The state of one compression test from its consolidation on.
-template <int D>
-struct Shear {
-  typename Dim<D>::Vec ref = Dim<D>::Vec::Zero();  // box size at the start of loading
-  std::string warning;
-  std::uint64_t bonds_made = 0, broken0 = 0;
-  double porosity0 = 0.0, height0 = 0.0, d0 = 0.0;
-  double eps = 0.0, next_record = 0.0;
-  std::vector<double> vtk_left;  // strains of the VTK frames to come, largest first
-  CompressionCurve curve;
-
-  template <class Archive>
-  void visit(Archive& a) {
-    a(ref), a(warning), a(bonds_made), a(broken0), a(porosity0), a(height0), a(d0), a(eps);
-    a(next_record), a(vtk_left), a(curve.dimension), a(curve.axial_strain);
-    a(curve.volumetric_strain), a(curve.sigma1), a(curve.sigma3);
-  }
 };
 
 template <int D>
@@ -180,19 +156,6 @@ struct Lab {
                   grain_friction_deg(), unbalanced_force_ratio(w), coordination_number(w),
                   w.particles.radius.empty() ? 0.0 : w.particles.radius[0]});
   }
-  static std::vector<std::string> prep_columns() {
-    return {"phase",        "step",       "time",         "mean_stress", "porosity",
-            "friction_deg", "unbalanced", "coordination", "radius_0"};
-  }
-  static std::vector<std::string> history_columns(bool bonds) {
-    std::vector<std::string> cols = {"test",  "step", "time", "axial_strain", "volumetric_strain",
-                                     "sigma1"};
-    if (D == 3) cols.push_back("sigma2");
-    for (const char* c : {"sigma3", "p", "q", "porosity", "coordination", "unbalanced"})
-      cols.push_back(c);
-    if (bonds) cols.insert(cols.end(), {"bonds", "broken_bonds"});
-    return cols;
-  }
   bool bonds() const { return s.bonds_create != "none"; }
 
   void build() {
@@ -249,7 +212,7 @@ struct Lab {
 
   void start() {
     prepare_output_dir(opt.out_dir);
-    prep_csv.open(opt.out_dir + "/preparation.csv", prep_columns());
+    prep_csv.open(opt.out_dir + "/preparation.csv", triaxial_prep_columns());
     w.local_damping = s.compaction_damping;
     phase = Phase::kCompaction;
     install_controllers(false);
@@ -276,9 +239,10 @@ struct Lab {
     install_controllers(true);
     StateReader win(c.world.data(), c.world.size());
     load_world_state(win, w);
-    prep_csv.resume_rows(opt.out_dir + "/preparation.csv", prep_columns(), prep_rows);
+    prep_csv.resume_rows(opt.out_dir + "/preparation.csv", triaxial_prep_columns(), prep_rows);
     if (tests_begun)
-      history.resume_rows(opt.out_dir + "/history.csv", history_columns(bonds()), history_rows);
+      history.resume_rows(opt.out_dir + "/history.csv", triaxial_history_columns<D>(bonds()),
+                          history_rows);
     checkpoints.resume_clock(wall_before);
   }
 
@@ -347,7 +311,7 @@ struct Lab {
     prep["steps"] = w.step;
     w.controllers.clear();
     prepared = w;
-    history.open(opt.out_dir + "/history.csv", history_columns(bonds()));
+    history.open(opt.out_dir + "/history.csv", triaxial_history_columns<D>(bonds()));
     if (s.vtk) vtk.write(prepared);
     test = 0;
     begin_test();
@@ -469,43 +433,10 @@ struct Lab {
 
   // The test's results; then the next confining stress, or the end.
   void finish_test() {
-    const Shear<D>& h = shear;
     if (s.vtk) vtk.write(w);
-    const SoilParameters sp = soil_parameters(h.curve);
-    nlohmann::json r;
-    r["confining_stress"] = sigma3();
-    r["porosity_initial"] = h.porosity0;
-    r["peak_q"] = sp.peak_q;
-    r["axial_strain_at_peak"] = sp.axial_strain_at_peak;
-    r["phi_peak_deg"] = sp.phi_peak_deg;
-    r["phi_residual_deg"] = sp.phi_residual_deg;
-    r["young_modulus"] = sp.young_modulus;
-    r["poisson_ratio"] = sp.poisson_ratio;
-    r["dilatancy_deg"] = sp.dilatancy_deg;
-    // Peak principal stresses, for envelopes pooled over several runs (studies).
-    const auto& c = h.curve;
-    std::size_t ip = 0;
-    for (std::size_t i = 0; i < c.sigma1.size(); ++i)
-      if (c.sigma1[i] - c.sigma3[i] > c.sigma1[ip] - c.sigma3[ip]) ip = i;
-    r["sigma1_peak"] = c.sigma1[ip];
-    r["sigma3_peak"] = c.sigma3[ip];
-    // Size and rate measures of the representativeness and rate studies.
-    r["grain_size_d0"] = h.d0;
-    r["sample_height"] = h.height0;
-    r["d0_over_L"] = h.d0 / h.height0;
-    r["inertial_number"] = s.strain_rate * h.d0 * std::sqrt(s.grain.density / sigma3());
-    r["steps"] = w.step;
-    if (bonds()) {
-      r["bonds_at_start"] = s.bonds_create == "before_shear"
-                                ? h.bonds_made
-                                : intact_bonds(w) + (w.broken_bonds - h.broken0);
-      r["bonds_broken"] = w.broken_bonds - h.broken0;
-    }
-    r["grains"] = body_count(w);
-    if (!h.warning.empty()) r["warning"] = h.warning;
-    tests.push_back(r);
-    s1_peaks.push_back(c.sigma1[ip]);
-    s3_peaks.push_back(c.sigma3[ip]);
+    tests.push_back(test_results(shear, s, sigma3(), w, bonds()));
+    s1_peaks.push_back(tests.back()["sigma1_peak"].get<double>());
+    s3_peaks.push_back(tests.back()["sigma3_peak"].get<double>());
     if (++test < s.confining_stresses.size()) {
       begin_test();
     } else {
