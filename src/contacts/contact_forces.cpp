@@ -80,6 +80,9 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
   ContactExtra<D>* __restrict extra = L.extra.data();
   const PairLaw* pair_laws = world.pair_laws.data();
   const double overlap_limit = world.overlap_limit;
+  // With clumps: how many contacts share each collision (their dashpots split the mass).
+  const std::uint16_t* share =
+      world.collision_shares.pair.empty() ? nullptr : world.collision_shares.pair.data();
   for (std::size_t i = first; i < last; ++i) {
     const std::uint32_t b = start[i], e = start[i + 1];
     if (b == e) continue;
@@ -119,12 +122,13 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
       const PairLaw& law = laws[material[j]];
       double fn;
       Vec f;
+      const double inv_msum = share ? (imi + inv_mass[j]) * share[k] : imi + inv_mass[j];
       if (!bonded) {
-        f = contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt, spring[k], fn);
+        f = contact_force<D>(law, ri, rj, inv_msum, nrm, delta, vrel, dt, spring[k], fn);
       } else {
         bool broken;
-        f = bonded_contact_force<D>(law, ri, rj, imi + inv_mass[j], nrm, delta, vrel, dt, spring[k],
-                                    fn, broken);
+        f = bonded_contact_force<D>(law, ri, rj, inv_msum, nrm, delta, vrel, dt, spring[k], fn,
+                                    broken);
         if (broken) {
           extra[k].bonded = 0;
           ++t.broken_bonds;
@@ -220,12 +224,16 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
       }
       if (delta > world.overlap_limit * ri) [[unlikely]]
         t.note_overlap(i, -1 - static_cast<std::int64_t>(L.wall[k]), delta / ri);
-      const double a = ri - 0.5 * delta;
+      // The contact point lies on the wall's surface: a rigid wall does not indent, so the
+      // lever arm is R - delta (two grains share their overlap: R - delta / 2 each).
+      const double a = ri - delta;
       const Vec vrel = wall.velocity - (P.vel[i] + Dim<D>::cross(P.angvel[i], a * nrm));
       const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
+      const auto& shares = world.collision_shares.wall;
+      const double inv_m = shares.empty() ? P.inv_mass[i] : P.inv_mass[i] * shares[k];
       double fn;
-      const Vec f = contact_force<D>(law, ri, wall_partner_radius(law, ri), P.inv_mass[i], nrm,
-                                     delta, vrel, dt, L.wall_spring[k], fn);
+      const Vec f = contact_force<D>(law, ri, wall_partner_radius(law, ri), inv_m, nrm, delta, vrel,
+                                     dt, L.wall_spring[k], fn);
       P.force[i] -= f;
       P.torque[i] -= a * Dim<D>::cross(nrm, f);
       if constexpr (Extras) {

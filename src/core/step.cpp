@@ -19,6 +19,7 @@
 #include <string>
 
 #include "broadphase/neighbour_search.hpp"
+#include "clumps/collision_shares.hpp"
 #include "contacts/contact_forces.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -226,6 +227,7 @@ void step(World<D>& world) {
       P.force[i].setZero();
       P.torque[i] = Dim<D>::zero_rot();
     }
+    update_collision_shares(world);
     compute_contact_forces(world);
     compute_spar_contacts(world);
     if (world.overlap_offender >= 0) throw_overlap(world);

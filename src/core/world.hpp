@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "clumps/clumps.hpp"
+#include "clumps/collision_shares.hpp"
 #include "contacts/neighbour_list.hpp"
 #include "core/dim.hpp"
 #include "core/parallel.hpp"
@@ -85,6 +86,9 @@ struct World {
   std::vector<PairLaw> pair_laws;  // materials x materials
   std::vector<PairLaw> wall_laws;  // materials x walls
   NeighbourList<D> nlist;
+  // Per list entry, how many member contacts of a clump carry the same collision (scratch
+  // derived from the list and the positions each step; see clumps/collision_shares.hpp).
+  CollisionShares collision_shares;
 
   Vec gravity = Vec::Zero();
   double local_damping = 0.0;  // Cundall's non-viscous damping coefficient alpha

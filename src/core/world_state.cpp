@@ -67,6 +67,7 @@ void visit(Archive& a, World<D>& w) {
   a(L.start), a(L.other), a(L.spring), a(L.wall_start), a(L.wall), a(L.wall_spring);
   a(L.extra), a(L.wall_extra), a(L.spar_start), a(L.spar), a(L.spar_spring), a(L.skin);
   a(L.builds);
+  if constexpr (Archive::kLoading) w.collision_shares.built_for = CollisionShares::kNever;
 
   a(w.gravity), a(w.local_damping), a(w.dt), a(w.auto_dt), a(w.dt_safety);
   a(w.track_orientation), a(w.dt_update_interval), a(w.skin_factor), a(w.sort_interval);

@@ -16,8 +16,8 @@
 namespace geodem::test {
 namespace {
 
-constexpr std::uint64_t kGolden2D = 0x6e9910292b665f46ULL;
-constexpr std::uint64_t kGolden3D = 0x461a4b15d34f02adULL;
+constexpr std::uint64_t kGolden2D = 0x131700012196f434ULL;
+constexpr std::uint64_t kGolden3D = 0x34ebc59b2c270428ULL;
 
 struct Fnv1a {
   std::uint64_t h = 14695981039346656037ULL;

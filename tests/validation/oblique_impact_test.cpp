@@ -31,7 +31,7 @@ namespace {
 constexpr double kKn = 1.0e6;
 constexpr double kDensity = 2600.0;
 constexpr double kRadius = 0.01;
-constexpr double kVn = 0.02;  // max overlap / R ~ 2e-4: lever arm R - delta/2 ~ R
+constexpr double kVn = 0.02;  // max overlap / R ~ 2e-4: lever arm R - delta ~ R
 
 template <typename T>
 class ObliqueImpact : public ::testing::Test {
@@ -93,6 +93,33 @@ TYPED_TEST(ObliqueImpact, SlidingThroughout) {
       EXPECT_EQ(w.particles.angvel[0].y(), 0.0);
     }
   }
+}
+
+// The lever arm of the friction force on a rigid wall is R - delta: the contact point lies on
+// the wall's surface. With a soft spring (e = 1, sliding throughout) the overlap is
+// delta(t) = dmax sin(w0 t), dmax = vn / w0, w0 = sqrt(kn/m), and the spin after the impact is
+//   omega' = -(mu / I) int kn delta (R - delta) dt = -mu m vn (2 R - pi dmax / 2) / I.
+// At dmax = 5 % of R the overlap term is 3.9 % of the spin; a lever arm R - delta/2 would
+// leave half of it (2 % off).
+TYPED_TEST(ObliqueImpact, LeverArmOnAWallIsRadiusMinusOverlap) {
+  constexpr int D = TestFixture::kDim;
+  const double m = TestFixture::mass(), mu = 0.3, vn = kVn, vt = 10.0 * kVn;
+  const double dmax = 0.05 * kRadius;
+  const double kn = m * (vn / dmax) * (vn / dmax);  // w0 = vn / dmax
+  World<D> w;
+  const auto grain = add_material(w, linear_material(kn, kn, mu, 1.0, kDensity));
+  const auto wall = add_material(w, linear_material(kn, kn, 1e6, 1.0, kDensity, "wall"));
+  add_plane(w, vec<D>(0.0, 0.0), vec<D>(0.0, 1.0), wall, "floor");
+  w.resolve_pair_laws();
+  w.dt = std::numbers::pi * std::sqrt(m / kn) / 4000.0;
+  place_on_floor(w, kRadius, kDensity, grain, vn, vt);
+  const ImpactResult r = run_impact(w, 40000);
+  EXPECT_LT(rel_err(r.max_overlap, dmax), 1e-3);
+  const double spin_want =
+      -mu * m * vn * (2.0 * kRadius - std::numbers::pi * dmax / 2.0) / TestFixture::inertia();
+  const double spin = spin_z<D>(w.particles.angvel[0]);
+  report(std::to_string(D) + "D lever arm R - delta: spin", rel_err(spin, spin_want));
+  EXPECT_LT(rel_err(spin, spin_want), 2e-3);
 }
 
 TYPED_TEST(ObliqueImpact, StickingLeavesRolling) {
