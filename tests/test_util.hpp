@@ -18,11 +18,11 @@
 #include <string>
 #include <type_traits>
 
-#include "core/dim.hpp"
-#include "core/step.hpp"
-#include "core/world.hpp"
+#include "base/dim.hpp"
 #include "materials/material.hpp"
 #include "measure/measurements.hpp"
+#include "world/step.hpp"
+#include "world/world.hpp"
 
 namespace geodem::test {
 

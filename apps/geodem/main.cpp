@@ -10,85 +10,19 @@
 #include <string>
 #include <vector>
 
+#include "base/error.hpp"
+#include "base/parallel.hpp"
 #include "check_command.hpp"
-#include "core/error.hpp"
-#include "core/parallel.hpp"
 #include "io/interrupt.hpp"
 #include "io/run_output.hpp"
-#include "io/scenario_file.hpp"
-#include "lab/run_interface_shear.hpp"
-#include "lab/run_pullout.hpp"
-#include "lab/run_triaxial.hpp"
-#include "scene/build_scene.hpp"
-#include "scene/run_scene.hpp"
-#include "study/run_studies.hpp"
+#include "kinds/scenario_kind.hpp"
 #include "study/study_comm.hpp"
 
 namespace {
 
 constexpr int kOk = 0, kFailure = 1, kBadInput = 2, kUnstable = 3;
 
-using Loaded = geodem::LoadedScenario;
-
-Loaded load(const std::string& file, const std::vector<std::string>& overrides) {
-  return geodem::load_scenario(file, overrides);
-}
-
 int run_main(int argc, char** argv);
-
-// A new run's output folder (io/run_output.hpp, claim_output_dir): rank 0 decides (and
-// empties the folder on --overwrite) before any rank writes into it.
-void claim_output(const geodem::RunOptions& opt, bool overwrite) {
-  if (opt.resume) return;
-  std::string refusal;
-  if (geodem::comm::rank() == 0) refusal = geodem::claim_output_dir(opt.out_dir, overwrite);
-  if (geodem::comm::size() > 1) refusal = geodem::comm::all_gather(refusal)[0];
-  if (!refusal.empty()) throw geodem::InputError("", 0, "--out", refusal);
-}
-
-// Studies: their runs go to `--threads` workers on each MPI rank; rank 0 reports.
-int run_study(const Loaded& l, const std::string& file, const geodem::RunOptions& opt,
-              bool overwrite) {
-  nlohmann::json summary;
-  bool plots = true;
-  if (l.kind == "series") {
-    const auto s = geodem::read_series(l.root, file);
-    claim_output(opt, overwrite);
-    summary = geodem::run_series(s, opt);
-    plots = s.study.plots;
-  } else if (l.kind == "rate_study") {
-    const auto s = geodem::read_rate_study(l.root, file);
-    claim_output(opt, overwrite);
-    summary = geodem::run_rate_study(s, opt);
-    plots = s.study.plots;
-  } else if (geodem::is_interface_calibration(l.root)) {
-    const auto s = geodem::read_interface_calibrate(l.root, file);
-    claim_output(opt, overwrite);
-    summary = geodem::run_interface_calibrate(s, opt);
-    plots = s.plots;
-  } else {
-    const auto s = geodem::read_calibrate(l.root, file);
-    claim_output(opt, overwrite);
-    summary = geodem::run_calibrate(s, opt);
-    plots = s.study.plots;
-  }
-  if (geodem::comm::rank() != 0) return kOk;
-  if (plots) geodem::make_plots(opt.out_dir, opt.quiet);
-  const auto& failed = summary["results"]["failed_runs"];
-  if (!failed.empty()) {
-    std::fprintf(stderr, "warning: %zu run(s) did not complete (results.failed_runs):\n",
-                 failed.size());
-    bool unstable = false;
-    for (const auto& f : failed) {
-      std::fprintf(stderr, "  %s: %s\n", f["id"].get<std::string>().c_str(),
-                   f["error"].get<std::string>().c_str());
-      unstable = unstable || f["status"] == "unstable";
-    }
-    return unstable ? kUnstable : kFailure;
-  }
-  if (!opt.quiet) std::fprintf(stderr, "done: outputs in %s\n", opt.out_dir.c_str());
-  return kOk;
-}
 
 }  // namespace
 
@@ -165,9 +99,10 @@ int run_main(int argc, char** argv) {
       }
       return geodem::make_plots(plot_dir, false) ? kOk : kFailure;
     }
-    Loaded l = load(scenario, overrides);
+    geodem::LoadedScenario l = geodem::load_known_scenario(scenario, overrides);
     run_kind = l.kind;
     if (*check) return check_scenario(l, scenario, threads);
+    const geodem::ScenarioKind& kind = geodem::find_kind(l, scenario);
     check_run_memory(l, scenario, threads);
     geodem::RunOptions opt;
     opt.out_dir = out_dir;
@@ -181,83 +116,28 @@ int run_main(int argc, char** argv) {
         throw geodem::InputError("", 0, "--overwrite",
                                  "--resume continues the run in its folder; --overwrite would "
                                  "delete it: give one of them");
-      if (l.kind == "interface_shear")
-        throw geodem::InputError(scenario, 0, "kind",
-                                 "an interface shear test writes no checkpoints: run it again "
-                                 "with --out DIR --overwrite");
+      if (!kind.resumable)
+        throw geodem::InputError(scenario, l.kind_line, "kind",
+                                 "kind \"" + l.kind +
+                                     "\" writes no checkpoints: run it again with --out DIR "
+                                     "--overwrite");
       opt.out_dir = out_dir = resume_dir;
       opt.resume = true;
     }
-    if (l.kind == "series" || l.kind == "rate_study" || l.kind == "calibrate")
-      return run_study(l, scenario, opt, overwrite);
-    // A pull-out over seeds or grain sizes runs its runs as a study does.
-    const bool pullout_series =
-        l.kind == "pullout" && (l.root["seeds"].value_or(1LL) > 1 || l.root.contains("refinement"));
-    if (geodem::comm::size() > 1 && !pullout_series)
-      throw geodem::InputError(scenario, 0, "kind",
+    const bool shared = kind.shares_ranks(l.root);
+    if (geodem::comm::size() > 1 && !shared)
+      throw geodem::InputError(scenario, l.kind_line, "kind",
                                "only studies (series, rate_study, calibrate) and pull-outs over "
                                "seeds share their runs across MPI ranks; run this scenario "
                                "without mpirun");
     // Single runs stop on SIGINT/SIGTERM after the step in progress, with a checkpoint;
-    // studies keep the default (their finished runs are reused on rerunning).
-    if (!pullout_series) geodem::install_interrupt_handlers();
-    if (l.kind == "triaxial") {
-      const geodem::TriaxialSettings t = geodem::read_triaxial(l.root, scenario);
-      claim_output(opt, overwrite);
-      geodem::run_triaxial(t, opt);
-      if (t.plots) geodem::make_plots(out_dir, quiet);
-      if (!quiet) std::fprintf(stderr, "done: outputs in %s\n", out_dir.c_str());
-      return kOk;
-    }
-    if (l.kind == "pullout") {
-      const geodem::PulloutSettings p = geodem::read_pullout(l.root, scenario);
-      if (p.seeds > 1 || !p.radius_factors.empty()) {
-        claim_output(opt, overwrite);  // a resumed series keeps its finished runs
-        const auto summary = geodem::run_pullout_series(l.root, p, opt);
-        if (geodem::comm::rank() != 0) return kOk;
-        if (p.plots) geodem::make_plots(out_dir, quiet);
-        const auto& t = summary["results"]["T_max"];
-        if (!quiet && t.is_object())
-          std::fprintf(stderr, "done: T_max %.4g N/m (mean of %d seeds, cv %.2g); outputs in %s\n",
-                       t["mean"].get<double>(), p.seeds, t["cv"].get<double>(), out_dir.c_str());
-        return summary["results"]["failed_runs"].empty() ? kOk : kFailure;
-      }
-      claim_output(opt, overwrite);
-      const auto summary = geodem::run_pullout(p, opt);
-      if (p.plots) geodem::make_plots(out_dir, quiet);
-      if (!quiet)
-        std::fprintf(stderr,
-                     "done: T_max %.4g N/m, mechanism %s (design: slippage %.4g N/m, soil mass "
-                     "%.4g N/m); outputs in %s\n",
-                     summary["results"]["T_max"].get<double>(),
-                     summary["results"]["mechanism"].get<std::string>().c_str(),
-                     summary["results"]["T_analytic_slip"].get<double>(),
-                     summary["results"]["T_analytic_soil"].get<double>(), out_dir.c_str());
-      return kOk;
-    }
-    if (l.kind == "interface_shear") {
-      const geodem::InterfaceShearSettings p = geodem::read_interface_shear(l.root, scenario);
-      claim_output(opt, overwrite);
-      const auto summary = geodem::run_interface_shear(p, opt);
-      if (p.plots) geodem::make_plots(out_dir, quiet);
-      if (!quiet)
-        std::fprintf(stderr,
-                     "done: interface friction %.4g deg (peak), %.4g deg (residual); outputs in "
-                     "%s\n",
-                     summary["results"]["interface_friction_peak_deg"].get<double>(),
-                     summary["results"]["interface_friction_residual_deg"].get<double>(),
-                     out_dir.c_str());
-      return kOk;
-    }
-    const geodem::SceneSettings s = geodem::read_scene(l.root, scenario);
-    claim_output(opt, overwrite);
-    const auto summary = geodem::run_scene(s, opt);
-    if (s.output.plots) geodem::make_plots(out_dir, quiet);
-    if (!quiet)
-      std::fprintf(stderr, "done: %s steps, %.3g s simulated; outputs in %s\n",
-                   summary["results"]["steps"].dump().c_str(),
-                   summary["results"]["time"].get<double>(), out_dir.c_str());
-    return kOk;
+    // runs shared as a study's keep the default (their finished runs are reused).
+    if (!shared) geodem::install_interrupt_handlers();
+    const geodem::KindRun done = kind.run(l, scenario, opt, overwrite);
+    if (done.exit_code == kOk && !quiet && geodem::comm::rank() == 0)
+      std::fprintf(stderr, "done: %s%soutputs in %s\n", done.done.c_str(),
+                   done.done.empty() ? "" : "; ", out_dir.c_str());
+    return done.exit_code;
   } catch (const geodem::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kBadInput;

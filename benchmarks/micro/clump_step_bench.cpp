@@ -8,8 +8,8 @@
 
 #include "broadphase/neighbour_search.hpp"
 #include "clumps/clump_dynamics.hpp"
-#include "core/step.hpp"
 #include "integrate/integrator.hpp"
+#include "world/step.hpp"
 
 namespace {
 

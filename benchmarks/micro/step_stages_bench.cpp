@@ -8,8 +8,8 @@
 
 #include "broadphase/neighbour_search.hpp"
 #include "contacts/contact_forces.hpp"
-#include "core/step.hpp"
 #include "integrate/integrator.hpp"
+#include "world/step.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 #include "broadphase/neighbour_search.hpp"
 
+#include "base/parallel.hpp"
 #include "clumps/clump_dynamics.hpp"
-#include "core/parallel.hpp"
 #include "structures/spar_geometry.hpp"
 
 #include <algorithm>

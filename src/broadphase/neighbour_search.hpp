@@ -2,7 +2,7 @@
 // Verlet list (contacts/neighbour_list.hpp) rebuilt with the old history merged in.
 #pragma once
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -2,7 +2,7 @@
 // rigid-body leapfrog of each clump, members placed back on their clump.
 #pragma once
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/dim.hpp"
+#include "base/dim.hpp"
 
 namespace geodem {
 

@@ -12,8 +12,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "base/dim.hpp"
 #include "clumps/clump_template.hpp"
-#include "core/dim.hpp"
 
 namespace geodem {
 

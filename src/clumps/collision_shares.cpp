@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -6,72 +6,16 @@
 #include <stdexcept>
 
 #include "clumps/clumps.hpp"
-#include "scene/random_cloud.hpp"
+#include "particles/random_cloud.hpp"
 
 namespace geodem {
 
-namespace {
-bool is_round(const std::string& shape) {
+bool is_round_shape(const std::string& shape) {
   return shape == "sphere" || shape == "disc";
 }
-}  // namespace
 
 bool GrainSpec::round_only() const {
-  return kinds.size() == 1 && is_round(kinds[0].shape);
-}
-
-std::vector<TemplateSpec> read_templates(TableReader& root, int dimension) {
-  std::vector<TemplateSpec> out;
-  const std::size_t row = static_cast<std::size_t>(dimension) + 1;
-  for (auto& t : root.tables("templates")) {
-    TemplateSpec ts;
-    ts.name = t.string("name", "");
-    if (ts.name.empty()) t.fail("name", "a template needs a name");
-    if (is_round(ts.name)) t.fail("name", "'" + ts.name + "' is the round grain's name");
-    ts.members = t.number_rows("members", row);
-    if (ts.members.empty())
-      t.fail("members", "expected rows [x, y," + std::string(dimension == 3 ? " z," : "") +
-                            " radius] (one per member)");
-    for (const auto& m : ts.members)
-      if (!(m.back() > 0.0)) t.fail("members", "member radii must be positive");
-    t.finish();
-    out.push_back(ts);
-  }
-  return out;
-}
-
-void check_shape(TableReader& t, const std::string& key, const std::string& shape,
-                 const std::vector<TemplateSpec>& templates) {
-  std::vector<std::string> known = builtin_clump_template_names();
-  for (const auto& k : templates) known.push_back(k.name);
-  if (std::find(known.begin(), known.end(), shape) != known.end()) return;
-  std::string list;
-  for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-  t.fail(key, "unknown grain '" + shape + "'; expected one of: " + list);
-}
-
-GrainSpec read_grain_spec(TableReader& sample, int dimension,
-                          const std::vector<TemplateSpec>& templates) {
-  GrainSpec spec;
-  spec.templates = templates;
-  auto mix = sample.tables("grains");
-  if (!mix.empty()) {
-    if (sample.has("grain")) sample.fail("grain", "give either 'grain' or [[...grains]], not both");
-    spec.kinds.clear();
-    for (auto& t : mix) {
-      GrainKind k;
-      k.shape = t.string("shape", dimension == 3 ? "sphere" : "disc");
-      check_shape(t, "shape", k.shape, templates);
-      k.size = t.positive("size", 1.0);
-      k.fraction = t.positive("fraction", 1.0);
-      t.finish();
-      spec.kinds.push_back(k);
-    }
-  } else {
-    spec.kinds[0].shape = sample.string("grain", dimension == 3 ? "sphere" : "disc");
-    check_shape(sample, "grain", spec.kinds[0].shape, templates);
-  }
-  return spec;
+  return kinds.size() == 1 && is_round_shape(kinds[0].shape);
 }
 
 template <int D>
@@ -79,7 +23,7 @@ ResolvedClump<D> resolve_shape(const std::string& shape,
                                const std::vector<TemplateSpec>& templates) {
   using Vec = typename Dim<D>::Vec;
   ClumpTemplate<D> t;
-  if (is_round(shape)) {
+  if (is_round_shape(shape)) {
     builtin_clump_template<D>("sphere", t);
   } else if (!builtin_clump_template<D>(shape, t)) {
     const auto it = std::find_if(templates.begin(), templates.end(),
@@ -105,7 +49,7 @@ std::vector<ResolvedKind<D>> resolve_kinds(const GrainSpec& spec) {
     ResolvedKind<D> r;
     r.size = k.size;
     r.fraction = k.fraction / total;
-    r.round = is_round(k.shape);
+    r.round = is_round_shape(k.shape);
     r.clump = resolve_shape<D>(k.shape, spec.templates);
     out.push_back(r);
   }

@@ -1,16 +1,15 @@
 // The grains of a sample: one shape, or a mix of shapes (round grains or clump
-// templates) by size and number fraction, as read from a scenario, and the random
+// templates) by size and number fraction (scene/grain_spec_reader reads them), and the random
 // loose cloud of them that a lab test or a scene starts from.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "base/random.hpp"
 #include "clumps/clump_template.hpp"
-#include "core/random.hpp"
-#include "core/world.hpp"
-#include "io/toml_reader.hpp"
-#include "scene/random_cloud.hpp"
+#include "particles/random_cloud.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 
@@ -31,16 +30,8 @@ struct GrainSpec {
   bool round_only() const;
 };
 
-// Reads the `[[templates]]` (name, members) of the root table.
-std::vector<TemplateSpec> read_templates(TableReader& root, int dimension);
-
-// Checks that `shape` names a round grain, a built-in template or one of `templates`.
-void check_shape(TableReader& t, const std::string& key, const std::string& shape,
-                 const std::vector<TemplateSpec>& templates);
-
-// Reads `grain = "<shape>"` or `[[<table>.grains]]` (shape, size, fraction) from `sample`.
-GrainSpec read_grain_spec(TableReader& sample, int dimension,
-                          const std::vector<TemplateSpec>& templates);
+// "sphere" and "disc": the round grain's names.
+bool is_round_shape(const std::string& shape);
 
 // The template of one shape name, at unit scale (round grains: one member of radius 1).
 template <int D>

@@ -5,7 +5,7 @@
 
 #include <cstddef>
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -7,7 +7,7 @@
 // rows in index order. A force on a grain of the same slab is added at once; a force
 // on a grain of a later slab (its index is higher) is kept in the slab's bucket for that
 // later slab; the buckets are added afterwards, target slabs side by side, each target's
-// in source-slab order (SlabCrossings, core/parallel.hpp). Every grain
+// in source-slab order (SlabCrossings, base/parallel.hpp). Every grain
 // thus sums its forces in one fixed order: first those from its own slab's rows (by
 // row), then those from earlier slabs (by slab, then row). Pairs listed but apart add
 // nothing, so the list's skin and rebuilds do not change the order either. Sums over
@@ -17,8 +17,8 @@
 
 #include <algorithm>
 
+#include "base/parallel.hpp"
 #include "contacts/contact_law.hpp"
-#include "core/parallel.hpp"
 
 namespace geodem {
 

@@ -1,7 +1,7 @@
 // The contact force stage: every listed grain-grain and grain-wall pair.
 #pragma once
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

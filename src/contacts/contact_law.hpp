@@ -8,8 +8,8 @@
 #include <cmath>
 #include <limits>
 
+#include "base/dim.hpp"
 #include "contacts/neighbour_list.hpp"
-#include "core/dim.hpp"
 #include "materials/material.hpp"
 
 namespace geodem {

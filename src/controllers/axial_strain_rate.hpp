@@ -2,8 +2,8 @@
 // strain_rate x the current box size (a constant true strain rate); the lo wall stays.
 #pragma once
 
-#include "core/world.hpp"
-#include "lab/lab_box.hpp"
+#include "walls/lab_box.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

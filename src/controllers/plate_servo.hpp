@@ -11,8 +11,8 @@
 #include <cmath>
 #include <cstddef>
 
-#include "core/world.hpp"
-#include "io/state_archive.hpp"
+#include "base/state_archive.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -17,9 +17,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/world.hpp"
-#include "io/state_archive.hpp"
-#include "lab/lab_box.hpp"
+#include "base/state_archive.hpp"
+#include "walls/lab_box.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

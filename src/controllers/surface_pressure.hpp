@@ -6,8 +6,8 @@
 
 #include <algorithm>
 
-#include "core/world.hpp"
-#include "io/state_archive.hpp"
+#include "base/state_archive.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -5,8 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "base/parallel.hpp"
 #include "contacts/contact_law.hpp"
-#include "core/parallel.hpp"
 #include "structures/spar_dynamics.hpp"
 #include "structures/spar_geometry.hpp"
 

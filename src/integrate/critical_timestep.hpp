@@ -7,7 +7,7 @@
 // Rayleigh wave time bounds it (Hertz law).
 #pragma once
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

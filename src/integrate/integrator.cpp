@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/parallel.hpp"
 #include "clumps/clump_dynamics.hpp"
-#include "core/parallel.hpp"
 #include "structures/spar_dynamics.hpp"
 
 namespace geodem {

@@ -4,7 +4,7 @@
 // F_k <- F_k - alpha |F_k| sign(v_k), v_k the on-step estimate v(t-dt/2) + a_k dt/2.
 #pragma once
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "io/state_archive.hpp"
+#include "base/state_archive.hpp"
 
 namespace geodem {
 

@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include "core/error.hpp"
-#include "core/text.hpp"
+#include "base/error.hpp"
+#include "base/text.hpp"
 #include "io/output_files.hpp"
 #include "io/toml_reader.hpp"
 #include "scene/scene_settings.hpp"

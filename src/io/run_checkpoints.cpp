@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "core/error.hpp"
+#include "base/error.hpp"
 
 namespace geodem {
 

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "base/state_archive.hpp"
 #include "io/checkpoint.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
-#include "io/state_archive.hpp"
 
 namespace geodem {
 

@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/world.hpp"
-#include "io/state_archive.hpp"
+#include "base/state_archive.hpp"
 #include "io/vtk_writer.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

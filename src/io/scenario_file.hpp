@@ -1,5 +1,6 @@
-// A scenario file read up to its kind: TOML parsed, --set overrides applied, material
-// file references expanded. Each kind's reader (scene/, lab/, study/) checks the rest.
+// A scenario file read up to its kind: TOML parsed, --set overrides applied, the `kind`
+// string found. The kinds' table (kinds/scenario_kind.hpp) checks the kind, expands the
+// material file references and runs the kind's reader.
 #pragma once
 
 #include <toml++/toml.h>
@@ -10,18 +11,17 @@ namespace geodem {
 
 struct LoadedScenario {
   toml::table root;
-  std::string kind;  // one of scenario_kinds()
+  std::string kind;
+  int kind_line = 1;  // the line of `kind` in the file, for messages
 };
 
-const std::vector<std::string>& scenario_kinds();
-
-// Throws InputError (file, line, key, what was expected) on any defect.
+// Throws InputError (file, line, key, what was expected) on any defect of the TOML, of an
+// override or of the `kind` key (missing, not a string).
 LoadedScenario load_scenario(const std::string& file, const std::vector<std::string>& overrides);
 
-// The same from text already in memory; `name` stands for the file in messages.
+// The same from text already in memory, or from a table built by other means (the Python
+// module's dicts); `name` stands for the file in messages.
 LoadedScenario load_scenario_text(const std::string& text, const std::string& name);
-
-// Runs the reader of the scenario's kind: every key checked, nothing built or run.
-void check_scenario_settings(const LoadedScenario& scenario, const std::string& file);
+LoadedScenario load_scenario_table(toml::table root, const std::string& name);
 
 }  // namespace geodem

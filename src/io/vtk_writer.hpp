@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

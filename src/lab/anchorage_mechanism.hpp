@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "core/world.hpp"
-#include "core/world_state.hpp"
 #include "io/checkpoint.hpp"
 #include "io/output_files.hpp"
+#include "world/world.hpp"
+#include "world/world_state.hpp"
 
 namespace geodem {
 

@@ -1,5 +1,6 @@
 #include "lab/deposit_settings.hpp"
 
+#include "scene/grain_spec_reader.hpp"
 #include "scene/scene_settings.hpp"
 
 namespace geodem {

@@ -18,7 +18,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

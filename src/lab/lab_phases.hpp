@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/error.hpp"
+#include "base/error.hpp"
 #include "io/interrupt.hpp"
 #include "io/run_output.hpp"
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "core/world.hpp"
 #include "lab/anchorage.hpp"
 #include "lab/pullout_settings.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

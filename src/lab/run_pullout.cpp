@@ -16,12 +16,10 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "base/error.hpp"
+#include "base/random.hpp"
 #include "contacts/bonds.hpp"
 #include "controllers/surface_pressure.hpp"
-#include "core/error.hpp"
-#include "core/random.hpp"
-#include "core/step.hpp"
-#include "core/world_state.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
@@ -35,6 +33,8 @@
 #include "lab/soil_deposit.hpp"
 #include "lab/soil_editing.hpp"
 #include "measure/measurements.hpp"
+#include "world/step.hpp"
+#include "world/world_state.hpp"
 
 namespace geodem {
 

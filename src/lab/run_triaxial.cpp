@@ -6,26 +6,26 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "base/error.hpp"
+#include "base/random.hpp"
+#include "base/text.hpp"
 #include "clumps/grain_mix.hpp"
 #include "contacts/bonds.hpp"
 #include "controllers/axial_strain_rate.hpp"
 #include "controllers/radius_growth.hpp"
 #include "controllers/stress_servo.hpp"
-#include "core/error.hpp"
-#include "core/random.hpp"
-#include "core/step.hpp"
-#include "core/text.hpp"
-#include "core/world_state.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
-#include "lab/lab_box.hpp"
 #include "lab/lab_phases.hpp"
 #include "lab/soil_parameters.hpp"
 #include "lab/triaxial_test_state.hpp"
 #include "measure/measurements.hpp"
-#include "scene/random_cloud.hpp"
+#include "particles/random_cloud.hpp"
+#include "walls/lab_box.hpp"
+#include "world/step.hpp"
+#include "world/world_state.hpp"
 
 namespace geodem {
 

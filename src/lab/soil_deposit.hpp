@@ -11,12 +11,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include "base/error.hpp"
+#include "base/random.hpp"
 #include "clumps/grain_mix.hpp"
-#include "core/error.hpp"
-#include "core/random.hpp"
-#include "core/world.hpp"
 #include "lab/deposit_settings.hpp"
 #include "measure/measurements.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

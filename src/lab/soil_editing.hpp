@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

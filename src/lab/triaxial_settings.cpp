@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "io/output_files.hpp"
+#include "scene/grain_spec_reader.hpp"
 #include "scene/scene_settings.hpp"
 
 namespace geodem {

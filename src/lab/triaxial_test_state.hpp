@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "contacts/bonds.hpp"
-#include "core/world.hpp"
 #include "lab/soil_parameters.hpp"
 #include "lab/triaxial_settings.hpp"
 #include "measure/measurements.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -6,7 +6,7 @@
 #include <limits>
 #include <numbers>
 
-#include "core/parallel.hpp"
+#include "base/parallel.hpp"
 
 namespace geodem {
 

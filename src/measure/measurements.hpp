@@ -1,7 +1,7 @@
 // Measurements of the assembly, read by recorders and lab tests.
 #pragma once
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -6,7 +6,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "core/dim.hpp"
+#include "base/dim.hpp"
 
 namespace geodem {
 
@@ -84,10 +84,12 @@ struct Particles {
   // Reorders every array: new index k holds the grain that had index order[k]. An
   // order shorter than the grains keeps only those it lists (removal).
   void permute(const std::vector<std::uint32_t>& order) {
+    // Copied back into the same buffers (never larger: no reallocation), so that views of
+    // the arrays (the Python module's numpy arrays) keep pointing at live memory.
     auto apply = [&](auto& v) {
       std::remove_reference_t<decltype(v)> out(order.size());
       for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
-      v.swap(out);
+      v.assign(out.begin(), out.end());
     };
     apply(pos), apply(vel), apply(angvel), apply(force), apply(torque), apply(radius);
     apply(inv_mass), apply(inv_inertia), apply(material), apply(flags), apply(pos_at_build);

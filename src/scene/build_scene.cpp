@@ -9,11 +9,11 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "base/error.hpp"
+#include "base/random.hpp"
 #include "clumps/grain_mix.hpp"
-#include "core/error.hpp"
-#include "core/random.hpp"
 #include "io/output_files.hpp"
-#include "scene/random_cloud.hpp"
+#include "particles/random_cloud.hpp"
 
 namespace geodem {
 

@@ -1,8 +1,8 @@
 // Turns scene settings into a World: materials, pair laws, walls, grains.
 #pragma once
 
-#include "core/world.hpp"
 #include "scene/scene_settings.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

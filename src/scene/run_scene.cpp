@@ -6,16 +6,16 @@
 #include <cstdio>
 #include <limits>
 
+#include "base/error.hpp"
 #include "contacts/bonds.hpp"
-#include "core/error.hpp"
-#include "core/step.hpp"
-#include "core/world_state.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
 #include "measure/measurements.hpp"
 #include "scene/build_scene.hpp"
+#include "world/step.hpp"
+#include "world/world_state.hpp"
 
 namespace geodem {
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "io/output_files.hpp"
+#include "scene/grain_spec_reader.hpp"
 
 namespace geodem {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/dim.hpp"
+#include "base/dim.hpp"
 
 namespace geodem {
 

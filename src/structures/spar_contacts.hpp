@@ -8,7 +8,7 @@
 // element to the next (structures/spar_geometry.hpp says which element owns a point).
 #pragma once
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -3,7 +3,7 @@
 // damping, in the same step as the grains.
 #pragma once
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <set>
 
-#include "core/text.hpp"
+#include "base/text.hpp"
 #include "io/material_file.hpp"
 #include "io/output_files.hpp"
 #include "lab/soil_parameters.hpp"

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/text.hpp"
+#include "base/text.hpp"
 #include "io/material_file.hpp"
 #include "io/output_files.hpp"
 #include "lab/interface_parameters.hpp"

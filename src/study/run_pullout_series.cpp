@@ -11,7 +11,7 @@
 #include <limits>
 #include <map>
 
-#include "core/text.hpp"
+#include "base/text.hpp"
 #include "io/output_files.hpp"
 #include "study/linear_fit.hpp"
 #include "study/run_studies.hpp"

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/text.hpp"
+#include "base/text.hpp"
 #include "io/output_files.hpp"
 #include "study/run_studies.hpp"
 #include "study/study_analysis.hpp"

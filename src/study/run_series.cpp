@@ -4,8 +4,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/error.hpp"
-#include "core/text.hpp"
+#include "base/error.hpp"
+#include "base/text.hpp"
 #include "io/output_files.hpp"
 #include "study/run_studies.hpp"
 #include "study/study_analysis.hpp"

@@ -1,5 +1,5 @@
 #include "study/study_executor.hpp"
-#include "core/text.hpp"
+#include "base/text.hpp"
 
 #include <unistd.h>
 
@@ -16,7 +16,7 @@
 #include <sstream>
 #include <thread>
 
-#include "core/error.hpp"
+#include "base/error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/output_files.hpp"
 #include "lab/run_interface_shear.hpp"

@@ -1,5 +1,5 @@
 #include "study/study_settings.hpp"
-#include "core/text.hpp"
+#include "base/text.hpp"
 
 #include <algorithm>
 #include <cmath>

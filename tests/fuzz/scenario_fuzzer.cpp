@@ -8,14 +8,14 @@
 #include <exception>
 #include <string>
 
-#include "core/error.hpp"
-#include "io/scenario_file.hpp"
+#include "base/error.hpp"
+#include "kinds/scenario_kind.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const auto scenario = geodem::load_scenario_text(text, "fuzz.toml");
-    geodem::check_scenario_settings(scenario, "fuzz.toml");
+    const auto scenario = geodem::load_known_scenario_text(text, "fuzz.toml");
+    (void)geodem::find_kind(scenario, "fuzz.toml").check(scenario.root, "fuzz.toml", 1, false);
   } catch (const geodem::InputError& e) {
     // Expected for bad input; the message must name the file.
     if (std::string(e.what()).rfind("fuzz.toml", 0) != 0) {

@@ -1,4 +1,4 @@
-// Checkpoints (io/checkpoint.hpp, core/world_state.hpp): a world saved and loaded into a
+// Checkpoints (io/checkpoint.hpp, world/world_state.hpp): a world saved and loaded into a
 // fresh one built from the same settings continues bit for bit like the original; files
 // that are corrupt or cut short are detected by their length and checksum, and the
 // newest valid file is used instead.
@@ -11,9 +11,9 @@
 
 #include "controllers/radius_growth.hpp"
 #include "controllers/stress_servo.hpp"
-#include "core/world_state.hpp"
 #include "io/checkpoint.hpp"
 #include "pressed_packing.hpp"
+#include "world/world_state.hpp"
 
 namespace geodem::test {
 namespace {

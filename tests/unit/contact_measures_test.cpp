@@ -6,13 +6,13 @@
 #include <numbers>
 #include <random>
 
+#include "base/error.hpp"
 #include "broadphase/neighbour_search.hpp"
 #include "clumps/clump_dynamics.hpp"
-#include "core/error.hpp"
-#include "core/step.hpp"
 #include "integrate/critical_timestep.hpp"
 #include "measure/measurements.hpp"
 #include "test_util.hpp"
+#include "world/step.hpp"
 
 namespace geodem::test {
 namespace {

@@ -1,4 +1,4 @@
-// The instability watch (core/step.cpp, check_finite): a grain that went through a wall,
+// The instability watch (world/step.cpp, check_finite): a grain that went through a wall,
 // or a contact that closes by half a radius in one step, stops the run with a diagnosis;
 // fast grains in free flight, or moving together, do not.
 #include <gtest/gtest.h>
@@ -6,8 +6,8 @@
 #include <limits>
 #include <string>
 
+#include "base/error.hpp"
 #include "broadphase/neighbour_search.hpp"
-#include "core/error.hpp"
 #include "test_util.hpp"
 
 namespace geodem::test {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "core/random.hpp"
+#include "base/random.hpp"
 #include "study/linear_fit.hpp"
 #include "study/study_analysis.hpp"
 

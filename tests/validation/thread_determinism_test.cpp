@@ -1,4 +1,4 @@
-// Results do not depend on the thread count (core/parallel.hpp): the same packing run
+// Results do not depend on the thread count (base/parallel.hpp): the same packing run
 // with 1, 2 and 3 threads ends in bitwise the same state. The packing is large enough
 // for every stage to run in parallel (several force slabs, parallel integration), it
 // starts overlapping so that grains move and the list is rebuilt and renumbered often,
@@ -9,7 +9,7 @@
 
 #include <cstring>
 
-#include "core/parallel.hpp"
+#include "base/parallel.hpp"
 #include "pressed_packing.hpp"
 
 namespace geodem::test {

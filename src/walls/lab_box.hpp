@@ -6,7 +6,7 @@
 #include <array>
 #include <string>
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

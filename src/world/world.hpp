@@ -1,5 +1,5 @@
 // The whole simulated state: grains, walls, materials, contacts, time.
-// The time step (core/step.cpp) advances it; the engine never reads files.
+// The time step (world/step.cpp) advances it; the engine never reads files.
 #pragma once
 
 #include <array>
@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "base/dim.hpp"
+#include "base/parallel.hpp"
 #include "clumps/clumps.hpp"
 #include "clumps/collision_shares.hpp"
 #include "contacts/neighbour_list.hpp"
-#include "core/dim.hpp"
-#include "core/parallel.hpp"
 #include "materials/material.hpp"
 #include "particles/particles.hpp"
 #include "structures/spar_chains.hpp"
@@ -66,7 +66,7 @@ struct ContactStats {
 
 // A contribution computed in one slab of grains for a body outside it (a force and a
 // torque, or a stiffness): kept per slab and added afterwards in slab order, so that sums
-// do not depend on the thread count (core/parallel.hpp).
+// do not depend on the thread count (base/parallel.hpp).
 template <int D>
 struct SlabCrossing {
   typename Dim<D>::Vec a;
@@ -105,7 +105,7 @@ struct World {
   // Every this many neighbour-list builds, grains are renumbered in cell order so
   // that neighbours sit close in memory (0: never; grain indices then stay fixed).
   int sort_interval = 0;
-  // Threads of the step's loops (core/parallel.hpp); results do not depend on it.
+  // Threads of the step's loops (base/parallel.hpp); results do not depend on it.
   int threads = 1;
   // Per-slab crossing contributions of the force stage and the automatic time step,
   // kept between steps so that the step allocates nothing (scratch, not state).

@@ -1,7 +1,7 @@
 // The time step: the one place that says what happens, in which order.
 #pragma once
 
-#include "core/world.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -1,4 +1,4 @@
-#include "core/world_state.hpp"
+#include "world/world_state.hpp"
 
 namespace geodem {
 

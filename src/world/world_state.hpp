@@ -4,8 +4,8 @@
 // settings) is rebuilt from the scenario; the names and counts are checked on loading.
 #pragma once
 
-#include "core/world.hpp"
-#include "io/state_archive.hpp"
+#include "base/state_archive.hpp"
+#include "world/world.hpp"
 
 namespace geodem {
 

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "core/dim.hpp"
-#include "core/random.hpp"
+#include "base/dim.hpp"
+#include "base/random.hpp"
 
 namespace geodem {
 

@@ -11,18 +11,18 @@
 //   6. recorders          history rows, snapshots (outside the engine, by callback)
 //
 // Each stage lives in its concept's folder; this file only orders and times them.
-#include "core/step.hpp"
+#include "world/step.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "base/error.hpp"
+#include "base/parallel.hpp"
 #include "broadphase/neighbour_search.hpp"
 #include "clumps/collision_shares.hpp"
 #include "contacts/contact_forces.hpp"
-#include "core/error.hpp"
-#include "core/parallel.hpp"
 #include "integrate/critical_timestep.hpp"
 #include "integrate/integrator.hpp"
 #include "structures/spar_contacts.hpp"

@@ -1,4 +1,4 @@
-#include "scene/random_cloud.hpp"
+#include "particles/random_cloud.hpp"
 
 #include <algorithm>
 #include <array>

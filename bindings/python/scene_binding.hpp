@@ -1,0 +1,42 @@
+// A scene stepped from Python (docs/python.md): the world of a `kind = "scene"` scenario built
+// as `geodem run` builds it, then stepped by the caller, with numpy views of its arrays.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+#include "scene/scene_settings.hpp"
+#include "world/world.hpp"
+
+namespace geodem::python {
+
+namespace py = pybind11;
+
+template <int D>
+class Scene {
+ public:
+  explicit Scene(SceneSettings settings);
+
+  // Steps n times with the GIL released; the stress sums and contact counts of the last step
+  // are measured.
+  void step(std::uint64_t n);
+  // Steps until `steps` steps or `until` seconds (whichever comes first), calling
+  // callback(scene) every `every` steps; a callback that returns False stops the run.
+  void run(py::object self, std::uint64_t steps, double until, std::uint64_t every,
+           py::object callback);
+
+  World<D>& world() { return world_; }
+  const SceneSettings& settings() const { return settings_; }
+  std::size_t wall_index(const std::string& name) const;
+
+ private:
+  SceneSettings settings_;
+  World<D> world_;
+};
+
+// Registers the Scene2D and Scene3D classes.
+void bind_scenes(py::module_& m);
+
+}  // namespace geodem::python

@@ -1,0 +1,135 @@
+"""The Python module is the same engine as the command line (docs/python.md).
+
+Run by CTest (python.api) with PYTHONPATH pointing at the built module and GEODEM_BIN at the
+command line: pytest tests/python.
+"""
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import geodem
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "cli"))
+from small_scenarios import LAB_CHECKPOINT_TRIAXIAL  # noqa: E402
+
+GEODEM = os.environ.get("GEODEM_BIN", "build/geodem")
+
+SCENE = {
+    "kind": "scene",
+    "dimension": 2,
+    "seed": 4,
+    "time": {"step": "auto", "steps": 600},
+    "physics": {"gravity": [0.0, -9.81], "local_damping": 0.2},
+    "materials": [{"name": "sand", "young": 1e6, "friction": 0.5}],
+    "walls": [{"name": "floor", "normal": [0.0, 1.0], "area": 0.2},
+              {"name": "left", "point": [0.0, 0.0], "normal": [1.0, 0.0]},
+              {"name": "right", "point": [0.2, 0.0], "normal": [-1.0, 0.0]}],
+    "clouds": [{"min": [0.0, 0.0], "max": [0.2, 0.3], "count": 300, "radius": 0.004}],
+    "output": {"history_every": 50, "vtk": False, "plots": False},
+}
+
+
+def run_cli(scenario_text, out, tmp_path):
+    path = tmp_path / "scenario.toml"
+    path.write_text(scenario_text)
+    subprocess.run([GEODEM, "run", str(path), "--out", str(out), "--quiet"], check=True)
+    return json.loads((out / "summary.json").read_text())
+
+
+def test_triaxial_from_python_writes_the_cli_history(tmp_path):
+    cli = tmp_path / "cli"
+    run_cli(LAB_CHECKPOINT_TRIAXIAL, cli, tmp_path)
+    summary = geodem.run(str(tmp_path / "scenario.toml"), out=str(tmp_path / "py"))
+    assert summary["status"] == "completed" and summary["exit_code"] == 0
+    for name in ("history.csv", "preparation.csv"):  # no wall-clock column: the whole files
+        assert (cli / name).read_bytes() == (tmp_path / "py" / name).read_bytes(), name
+    assert summary["results"] == json.loads((cli / "summary.json").read_text())["results"]
+
+
+def toml_text(d, prefix=""):
+    """A small TOML writer for the test's dicts (tables, arrays of tables, values)."""
+    def value(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, str):
+            return json.dumps(v)
+        if isinstance(v, (list, tuple)):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        return repr(v)
+    lines, tables = [], []
+    for k, v in d.items():
+        if isinstance(v, dict):
+            tables.append(f"[{prefix}{k}]\n" + toml_text(v, prefix + k + "."))
+        elif isinstance(v, list) and v and isinstance(v[0], dict):
+            for item in v:
+                tables.append(f"[[{prefix}{k}]]\n" + toml_text(item, prefix + k + "."))
+        else:
+            lines.append(f"{k} = {value(v)}")
+    return "\n".join(lines) + "\n" + "\n".join(tables)
+
+
+def test_scene_stepped_from_python_ends_in_the_cli_state(tmp_path):
+    cli = run_cli(toml_text(SCENE), tmp_path / "cli", tmp_path)["results"]
+    scene = geodem.scene(SCENE)
+    assert isinstance(scene, geodem.Scene2D) and scene.count == 300
+    calls = []
+    scene.run(steps=600, every=100, callback=lambda s: calls.append(s.steps))
+    assert calls == [100, 200, 300, 400, 500, 600]
+    assert scene.steps == cli["steps"] and scene.time == cli["time"]
+    # The same bits: energies, extent of the grains, wall forces.
+    assert scene.kinetic_energy() == cli["kinetic_energy"]
+    x = scene.positions
+    assert list(x.min(axis=0)) == cli["centres_min"]
+    assert list(x.max(axis=0)) == cli["centres_max"]
+    assert list(scene.wall_force("floor")) == cli["walls"]["floor"]["force"]
+
+
+def test_callback_returning_false_stops_the_run():
+    scene = geodem.scene(SCENE)
+    scene.run(steps=1000, every=50, callback=lambda s: s.steps < 150)
+    assert scene.steps == 150
+
+
+def test_views_share_the_engine_memory():
+    big = dict(SCENE, dimension=3, time={"step": "auto", "steps": 1})
+    big["physics"] = {"gravity": [0.0, 0.0, -9.81]}
+    big["walls"] = [{"name": "floor", "normal": [0.0, 0.0, 1.0]}]
+    big["clouds"] = [{"min": [0.0, 0.0, 0.0], "max": [1.5, 1.5, 1.5], "count": 1_000_000,
+                      "radius": 0.004}]
+    scene = geodem.scene(big)
+    assert scene.count == 1_000_000
+    a, b = scene.positions, scene.positions
+    assert a.shape == (1_000_000, 3) and a.dtype == np.float64
+    assert not a.flags.owndata and not a.flags.writeable
+    # Two reads are the same memory, the engine's: no copy was made.
+    assert a.__array_interface__["data"][0] == b.__array_interface__["data"][0]
+    assert np.shares_memory(a, b)
+    v = scene.velocities
+    scene.step(1)  # the engine writes into the memory the views read
+    assert np.shares_memory(v, scene.velocities)
+    assert v[:, 2].min() < 0.0
+
+
+def test_walls_driven_from_python():
+    scene = geodem.scene(SCENE)
+    x0 = scene.wall_point("right")[0]
+    scene.set_wall_velocity("right", [-0.01, 0.0])
+    scene.step(100)
+    assert scene.wall_point("right")[0] == pytest.approx(x0 - 0.01 * scene.time, rel=1e-9)
+    with pytest.raises(KeyError, match="the walls are: floor, left, right"):
+        scene.wall_force("roof")
+
+
+def test_errors_are_python_exceptions():
+    bad = dict(SCENE, materials=[{"name": "sand", "young": -1.0}])
+    with pytest.raises(geodem.InputError, match="materials.0.young|young"):
+        geodem.check(bad)
+    with pytest.raises(geodem.InputError, match='unknown kind "scenery"'):
+        geodem.check(dict(SCENE, kind="scenery"))
+    assert geodem.check(SCENE).startswith('kind = "scene"')
+    assert issubclass(geodem.InputError, ValueError)
