@@ -33,6 +33,12 @@ done
 if ((all)); then
   examples/pullout2d/refresh_expected.sh "$OUT/pullout2d"
   examples/interface_shear2d/refresh_expected.sh "$OUT/interface_shear2d"
+  # The Python example (seeds 1-3 in its README; seed 1's figures in expected/).
+  for seed in 1 2 3; do
+    PYTHONPATH=build/python python3 examples/python/oedometer_servo.py "$OUT/python/seed$seed" "$seed"
+  done
+  cp "$OUT/python/seed1/oedometer.png" examples/python/expected/
+  cp "$OUT/python/seed1/oedometer.json" examples/python/expected/oedometer_seed1.json
 fi
 if ((changed)); then
   echo "figures changed: update the examples' READMEs (and docs quoting them) from expected/numbers.json"

@@ -133,6 +133,13 @@ void bind(py::module_& m, const char* name) {
           },
           "The force the grains exert on the wall at the last step (N; N/m in 2D).")
       .def(
+          "wall_stiffness",
+          [](S& s, const std::string& wall) {
+            return s.world().walls[s.wall_index(wall)].stiffness;
+          },
+          "The sum of the normal stiffnesses of the wall's contacts at the last step (N/m; N/m "
+          "per m in 2D): what a servo divides a force error by.")
+      .def(
           "wall_point",
           [](S& s, const std::string& wall) {
             const Vec p = s.world().walls[s.wall_index(wall)].point;

@@ -133,3 +133,17 @@ def test_errors_are_python_exceptions():
         geodem.check(dict(SCENE, kind="scenery"))
     assert geodem.check(SCENE).startswith('kind = "scene"')
     assert issubclass(geodem.InputError, ValueError)
+
+
+def test_oedometer_example_gives_its_expected_figures(tmp_path):
+    """examples/python/oedometer_servo.py, seed 1, against expected/oedometer_seed1.json."""
+    root = Path(__file__).resolve().parent.parent.parent
+    env = dict(os.environ, MPLBACKEND="Agg")
+    subprocess.run([sys.executable, str(root / "examples/python/oedometer_servo.py"),
+                    str(tmp_path), "1"], check=True, env=env, capture_output=True)
+    got = json.loads((tmp_path / "oedometer.json").read_text())
+    want = json.loads((root / "examples/python/expected/oedometer_seed1.json").read_text())
+    for g, w in zip(got["stages"], want["stages"]):
+        assert g["void_ratio"] == pytest.approx(w["void_ratio"], rel=1e-6)
+        assert g["stress_kPa"] == pytest.approx(w["stress_kPa"], rel=1e-6)
+    assert got["Cc"] == pytest.approx(want["Cc"], rel=1e-6)
