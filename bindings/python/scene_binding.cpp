@@ -1,5 +1,7 @@
 #include "scene_binding.hpp"
 
+#include "contacts_binding.hpp"
+
 #include <pybind11/stl.h>
 
 #include <limits>
@@ -116,6 +118,10 @@ void bind(py::module_& m, const char* name) {
                                return py::array_t<std::uint32_t>(
                                    static_cast<py::ssize_t>(id.size()), id.data());
                              })
+      .def(
+          "contacts", [](S& s) { return contact_arrays(s.world()); },
+          "The grain-grain contacts at the last step as arrays (copies): i, j, normal (from i to "
+          "j), overlap, normal_force (the law's elastic part), tangential_force (on j), bonded.")
       .def("kinetic_energy", [](S& s) { return kinetic_energy(s.world()); })
       .def("unbalanced_force", [](S& s) { return unbalanced_force_ratio(s.world()); })
       .def("coordination", [](S& s) { return coordination_number(s.world()); })
