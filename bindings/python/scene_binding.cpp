@@ -17,6 +17,7 @@ namespace geodem::python {
 template <int D>
 Scene<D>::Scene(SceneSettings settings) : settings_(std::move(settings)) {
   build_world<D>(settings_, world_);
+  world_.particles.stable_buffers = true;  // the numpy views stay valid across steps
   if (settings_.bonds_initial) create_bonds(world_, settings_.bond_gap_tolerance);
   update_timestep(world_);  // as the command line's scene runner does before its first step
 }

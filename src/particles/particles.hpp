@@ -42,6 +42,9 @@ struct Particles {
   // the clump index (kNoClump for a free grain) and the centre in the clump's body frame.
   std::vector<std::uint32_t> clump;
   std::vector<Vec> body_offset;
+  // Renumbering keeps every array in its buffer (see permute): set while something holds
+  // pointers into the arrays across steps (the Python module's views). Not state.
+  bool stable_buffers = false;
 
   std::size_t size() const { return pos.size(); }
 
@@ -84,12 +87,16 @@ struct Particles {
   // Reorders every array: new index k holds the grain that had index order[k]. An
   // order shorter than the grains keeps only those it lists (removal).
   void permute(const std::vector<std::uint32_t>& order) {
-    // Copied back into the same buffers (never larger: no reallocation), so that views of
-    // the arrays (the Python module's numpy arrays) keep pointing at live memory.
+    // With stable_buffers (views of the arrays exist: the Python module's numpy arrays), the
+    // result is copied back into the same buffers (never larger: no reallocation), so that the
+    // views keep pointing at live memory; else the new arrays replace the old (one copy less).
     auto apply = [&](auto& v) {
       std::remove_reference_t<decltype(v)> out(order.size());
       for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
-      v.assign(out.begin(), out.end());
+      if (stable_buffers)
+        v.assign(out.begin(), out.end());
+      else
+        v.swap(out);
     };
     apply(pos), apply(vel), apply(angvel), apply(force), apply(torque), apply(radius);
     apply(inv_mass), apply(inv_inertia), apply(material), apply(flags), apply(pos_at_build);
