@@ -69,7 +69,7 @@ py::array view(const std::vector<T>& v, int columns, py::handle owner) {
                              : py::array(py::dtype::of<double>(), {n, py::ssize_t{columns}},
                                          {py::ssize_t{sizeof(T)}, py::ssize_t{sizeof(double)}},
                                          reinterpret_cast<const double*>(v.data()), owner);
-  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  a.attr("flags").attr("writeable") = false;
   return a;
 }
 

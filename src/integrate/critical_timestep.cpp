@@ -72,7 +72,8 @@ struct DiagonalStiffness {
 template <int D>
 double dashpot_factor(const World<D>& world) {
   const std::size_t nm = world.materials.size();
-  std::vector<std::uint8_t> used(nm, 0);
+  static thread_local std::vector<std::uint8_t> used;  // scratch: no allocation per call
+  used.assign(nm, 0);
   for (const auto m : world.particles.material) used[m] = 1;
   double z = 0.0;
   auto meet = [&z](const PairLaw& law) { z = std::max({z, law.beta, 0.5 * law.hertz_damp}); };
