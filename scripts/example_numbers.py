@@ -21,8 +21,15 @@ def numbers(run_dir):
     if s["kind"] == "scene":
         out = {k: r[k] for k in ("time", "steps", "dt", "total_weight", "coordination", "porosity")
                if k in r}
+        out["particles"] = r["particles"]
         for name, w in sorted(r.get("walls", {}).items()):
             out[f"wall {name} force"] = w["force"]
+        for st in r.get("stages", []):
+            out[f"stage {st['name']}"] = {k: st[k] for k in ("stop_reason", "steps", "end_time")}
+            for servo in st.get("servos", []):
+                out[f"stage {st['name']}"][f"servo {servo['wall']} stress"] = servo["stress"]
+            for name, w in st["walls"].items():
+                out[f"stage {st['name']}"][f"wall {name} point"] = w["point"]
         return out
     if s["kind"] == "triaxial":
         out = {"tests": [{k: t[k] for k in TEST_KEYS if k in t} for t in r.get("tests", [r])]}

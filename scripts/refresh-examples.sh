@@ -3,7 +3,7 @@
 #
 #   scripts/refresh-examples.sh [--all] [OUT]
 #
-# Runs the single-run examples (deposit2d, deposit3d, triaxial3d, biaxial2d, grain_shape2d;
+# Runs the single-run examples (deposit2d, deposit3d, staged2d, triaxial3d, biaxial2d, grain_shape2d;
 # about 3 minutes on 2 cores) into OUT (default runs/examples), compares the figures their
 # READMEs quote with the committed ones (examples/NAME/expected/numbers.json: a difference is
 # printed, and means the README's table must be updated too), then writes the new figures
@@ -16,7 +16,7 @@ all=0
 if [[ "${1:-}" == "--all" ]]; then all=1; shift; fi
 OUT=${1:-runs/examples}
 changed=0
-for ex in deposit2d deposit3d triaxial3d biaxial2d grain_shape2d; do
+for ex in deposit2d deposit3d staged2d triaxial3d biaxial2d grain_shape2d; do
   dir="examples/$ex"
   ./build/geodem run "$dir/scenario.toml" --out "$OUT/$ex" --overwrite --quiet --threads 1
   if [[ -f "$dir/expected/numbers.json" ]] &&

@@ -34,6 +34,7 @@ struct SlabTally {
   double overlap_ratio = 0.0;
   std::vector<Vec> wall_force;  // per wall
   std::vector<double> wall_stiffness;
+  std::vector<double> wall_dashpot;
 
   void note_overlap(std::size_t i, std::int64_t partner, double ratio) {
     if (overlap_offender >= 0) return;
@@ -248,6 +249,8 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
       t.wall_force[L.wall[k]] += f;
       t.wall_stiffness[L.wall[k]] +=
           law.law == LawKind::kLinear ? law.linear_kn(ri, ri) : 1.5 * fn / delta;
+      t.wall_dashpot[L.wall[k]] +=
+          normal_dashpot(law, ri, wall_partner_radius(law, ri), inv_m, delta);
       if constexpr (Measure) {
         t.stats.fabric_stress += (a * nrm) * f.transpose();
         t.stats.sum_force += f.norm();
@@ -281,6 +284,7 @@ void compute_contact_forces(World<D>& world) {
     t.overlap_offender = -1;
     t.wall_force.assign(nw, Vec::Zero());
     t.wall_stiffness.assign(nw, 0.0);
+    t.wall_dashpot.assign(nw, 0.0);
   }
   const bool extras = world.contact_extras;
   if (world.measure_this_step) {
@@ -302,6 +306,7 @@ void compute_contact_forces(World<D>& world) {
   for (auto& w : world.walls) {
     w.force = Vec::Zero();
     w.stiffness = 0.0;
+    w.dashpot = 0.0;
   }
   if (world.measure_this_step) world.stats = ContactStats<D>{};
   for (std::size_t s = 0; s < slabs; ++s) {
@@ -316,6 +321,7 @@ void compute_contact_forces(World<D>& world) {
     for (std::size_t w = 0; w < nw; ++w) {
       world.walls[w].force += t.wall_force[w];
       world.walls[w].stiffness += t.wall_stiffness[w];
+      world.walls[w].dashpot += t.wall_dashpot[w];
     }
   }
 }

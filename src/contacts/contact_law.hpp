@@ -47,6 +47,19 @@ inline double wall_partner_radius(const PairLaw& p, double r) {
   return {4.0 / 3.0 * p.estar * a * delta - cn * vn, 8.0 * p.gstar * a, cn};
 }
 
+// The normal dashpot coefficient of a contact (the cn of normal_force), alone: what a servo
+// needs to know how the force answers the speed it gives a wall.
+inline double normal_dashpot(const PairLaw& p, double r1, double r2, double inv_msum,
+                             double delta) {
+  if (inv_msum <= 0.0) return 0.0;
+  if (p.law == LawKind::kLinear)
+    return p.beta > 0.0 ? 2.0 * p.beta * std::sqrt(p.linear_kn(r1, r2) / inv_msum) : 0.0;
+  const double rstar = std::isinf(r2) ? r1 : r1 * r2 / (r1 + r2);
+  return p.hertz_damp > 0.0
+             ? p.hertz_damp * std::sqrt(2.0 * p.estar * std::sqrt(rstar * delta) / inv_msum)
+             : 0.0;
+}
+
 // Keeps a spring (force or moment) in the current tangent plane with its magnitude:
 // removes its normal part sn and scales by |s|/|s_t| = 1/sqrt(1 - x), x = sn^2/|s|^2.
 // The normal turns little in a step, so x is tiny and the series 1 + x/2 + 3x^2/8 is

@@ -5,6 +5,10 @@
 // plate moves by gain x error + integral_gain x (sum of past errors). The integral term
 // supplies the steady velocity of a sample that dilates or contracts while it is sheared,
 // which a proportional law only gets from a steady stress error. The speed is capped.
+// With `count_dashpots`, the error is turned into a displacement at the stiffness the plate
+// meets within one step, k + c / dt (c: its contacts' normal dashpots): a plate whose speed
+// flips each step at its cap would otherwise see the dashpots' force flip with it, a
+// limit cycle that holds it off its target.
 #pragma once
 
 #include <algorithm>
@@ -20,12 +24,13 @@ template <int D>
 class PlateServo : public Controller<D> {
  public:
   PlateServo(std::size_t wall, double target, double max_speed, double gain = 0.5,
-             double integral_gain = 0.05)
+             double integral_gain = 0.05, bool count_dashpots = false)
       : wall_(wall),
         target_(target),
         vmax_(max_speed),
         gain_(gain),
-        integral_gain_(integral_gain) {}
+        integral_gain_(integral_gain),
+        count_dashpots_(count_dashpots) {}
 
   double target() const { return target_; }
   void set_target(double t) { target_ = t; }
@@ -44,7 +49,7 @@ class PlateServo : public Controller<D> {
     // Its integral term is dropped then too: it holds the steady speed of a plate that
     // follows the soil, which a plate out of contact no longer does.
     if (wall.stiffness > 0.0)
-      stiffness_ = wall.stiffness;
+      stiffness_ = wall.stiffness + (count_dashpots_ ? wall.dashpot / w.dt : 0.0);
     else
       sum_ = 0.0;
     double v;  // speed along the plate's normal, towards the grains
@@ -63,6 +68,7 @@ class PlateServo : public Controller<D> {
  private:
   std::size_t wall_;
   double target_, vmax_, gain_, integral_gain_;
+  bool count_dashpots_;
   double sum_ = 0.0;        // accumulated displacement errors (m)
   double stiffness_ = 0.0;  // the plate's contact stiffness when it last touched (N/m)
 };

@@ -110,6 +110,11 @@ void VtkSeries<D>::write(const World<D>& world) {
     write_spars_vtp(dir_ + "/vtk/" + name, world);
     pvd_.add(world.time, name, 2);
   }
+  if (contacts_) {
+    std::snprintf(name, sizeof name, "contacts_%06d.vtp", count_);
+    write_contacts_vtp(dir_ + "/vtk/" + name, world);
+    pvd_.add(world.time, name, 3);
+  }
   pvd_.write();
   ++count_;
 }

@@ -54,6 +54,8 @@ class VtkSeries {
   explicit VtkSeries(const std::string& dir) : dir_(dir), pvd_(dir + "/vtk/particles.pvd") {}
   void write(const World<D>& world);
   int count() const { return count_; }
+  // Also write the contact network (force chains) of each frame.
+  void with_contacts(bool on) { contacts_ = on; }
   // Checkpoints: the frames written so far. restore() also deletes the files of frames
   // written after the checkpoint and rewrites the index, so that a resumed run's series
   // is the one an uninterrupted run writes.
@@ -64,6 +66,7 @@ class VtkSeries {
   std::string dir_;
   PvdIndex pvd_;
   int count_ = 0;
+  bool contacts_ = false;
 };
 
 // Runs the plotting script on a finished run's folder; returns false (with a

@@ -1,10 +1,12 @@
 #include "io/vtk_writer.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <sstream>
 
 #include "io/output_files.hpp"
+#include "measure/contact_network.hpp"
 
 namespace geodem {
 
@@ -193,6 +195,45 @@ void write_spars_vtp(const std::string& path, const World<D>& world) {
   write_file_atomic(path, finish("PolyData", body.str(), data));
 }
 
+template <int D>
+void write_contacts_vtp(const std::string& path, const World<D>& world) {
+  const auto& P = world.particles;
+  const auto c = contact_network(world);
+  std::vector<double> pts = as3<D>(P.pos), normal = as3<D>(c.normal),
+                      ft = as3<D>(c.tangential_force), ft_norm, force;
+  std::vector<std::int64_t> conn, offs, bonded;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    conn.push_back(c.i[k]), conn.push_back(c.j[k]);
+    offs.push_back(static_cast<std::int64_t>(conn.size()));
+    const double t = c.tangential_force[k].norm();
+    ft_norm.push_back(t);
+    force.push_back(std::sqrt(c.normal_force[k] * c.normal_force[k] + t * t));
+    bonded.push_back(c.bonded[k]);
+  }
+  AppendedData data;
+  std::ostringstream body;
+  body << "<PolyData>\n<Piece NumberOfPoints=\"" << P.size() << "\" NumberOfVerts=\"0\" "
+       << "NumberOfLines=\"" << c.size() << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
+  data.add("radius", "Float64", 1, P.radius.data(), P.radius.size() * sizeof(double));
+  body << "<PointData Scalars=\"radius\">\n" << data.take_xml() << "</PointData>\n";
+  data.add("force", "Float64", 1, force.data(), force.size() * sizeof(double));
+  data.add("normal_force", "Float64", 1, c.normal_force.data(),
+           c.normal_force.size() * sizeof(double));
+  data.add("tangential_force", "Float64", 3, ft.data(), ft.size() * sizeof(double));
+  data.add("tangential_force_magnitude", "Float64", 1, ft_norm.data(),
+           ft_norm.size() * sizeof(double));
+  data.add("normal", "Float64", 3, normal.data(), normal.size() * sizeof(double));
+  data.add("overlap", "Float64", 1, c.overlap.data(), c.overlap.size() * sizeof(double));
+  data.add("bonded", "Int64", 1, bonded.data(), bonded.size() * 8);
+  body << "<CellData Scalars=\"force\" Vectors=\"normal\">\n" << data.take_xml() << "</CellData>\n";
+  data.add("Points", "Float64", 3, pts.data(), pts.size() * sizeof(double));
+  body << "<Points>\n" << data.take_xml() << "</Points>\n";
+  data.add("connectivity", "Int64", 1, conn.data(), conn.size() * 8);
+  data.add("offsets", "Int64", 1, offs.data(), offs.size() * 8);
+  body << "<Lines>\n" << data.take_xml() << "</Lines>\n</Piece>\n</PolyData>\n";
+  write_file_atomic(path, finish("PolyData", body.str(), data));
+}
+
 void PvdIndex::add(double time, const std::string& file, int part) {
   entries_.push_back({time, file, part});
 }
@@ -213,5 +254,7 @@ template void write_walls_vtp<2>(const std::string&, const World<2>&, double);
 template void write_walls_vtp<3>(const std::string&, const World<3>&, double);
 template void write_spars_vtp<2>(const std::string&, const World<2>&);
 template void write_spars_vtp<3>(const std::string&, const World<3>&);
+template void write_contacts_vtp<2>(const std::string&, const World<2>&);
+template void write_contacts_vtp<3>(const std::string&, const World<3>&);
 
 }  // namespace geodem

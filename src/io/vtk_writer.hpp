@@ -22,7 +22,14 @@ void write_walls_vtp(const std::string& path, const World<D>& world, double half
 template <int D>
 void write_spars_vtp(const std::string& path, const World<D>& world);
 
-// The .pvd index: part 0 grains, part 1 walls, part 2 spar chains.
+// The grain-grain contacts as lines between grain centres (force chains in ParaView: a Tube
+// filter sized by force): per line normal_force (N; N/m in 2D; negative for a bond in
+// tension), tangential_force (vector) and its magnitude, force (magnitude of the whole
+// elastic force), normal, overlap, bonded; per point the grain radius.
+template <int D>
+void write_contacts_vtp(const std::string& path, const World<D>& world);
+
+// The .pvd index: part 0 grains, part 1 walls, part 2 spar chains, part 3 contacts.
 class PvdIndex {
  public:
   struct Entry {

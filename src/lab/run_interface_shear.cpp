@@ -32,9 +32,9 @@
 #include "lab/lab_phases.hpp"
 #include "lab/sheet_inertia.hpp"
 #include "lab/soil_deposit.hpp"
-#include "lab/soil_editing.hpp"
 #include "measure/measurements.hpp"
 #include "world/step.hpp"
+#include "world/world_editing.hpp"
 #include "world/world_state.hpp"
 
 namespace geodem {

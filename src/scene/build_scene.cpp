@@ -86,7 +86,7 @@ void reject_input_overlaps(const std::vector<Sphere<D>>& g, const std::vector<st
 // Reads whitespace- or comma-separated rows; '#' starts a comment.
 template <int D, typename Add>
 void read_particle_file(const ParticleFileSpec& spec, std::size_t index,
-                        const std::string& scenario, Add&& add) {
+                        const std::string& scenario, std::size_t materials, Add&& add) {
   using Vec = typename Dim<D>::Vec;
   std::ifstream in(spec.path);
   if (!in)
@@ -119,6 +119,7 @@ void read_particle_file(const ParticleFileSpec& spec, std::size_t index,
                     std::to_string(values.size()));
     Vec x = Vec::Zero(), v = Vec::Zero();
     double r = spec.radius;
+    long long material = -1;  // from the spec
     for (std::size_t c = 0; c < values.size(); ++c) {
       const std::string& name = spec.columns[c];
       if (name == "x")
@@ -135,13 +136,109 @@ void read_particle_file(const ParticleFileSpec& spec, std::size_t index,
         v[D - 1] = values[c];
       else if (name == "radius")
         r = values[c];
+      else if (name == "material") {
+        if (values[c] != std::floor(values[c]) || values[c] < 0.0 ||
+            values[c] >= static_cast<double>(materials))
+          throw bad_row("material must be a 0-based index of the scene's " +
+                        std::to_string(materials) + " [[materials]], got " +
+                        format_number(values[c]));
+        material = static_cast<long long>(values[c]);
+      }
     }
     if (!(r > 0.0)) throw bad_row("radius must be positive");
-    add(x, r, v, lineno);
+    add(x, r, v, material, lineno);
   }
 }
 
 }  // namespace
+
+template <int D>
+std::vector<Wall<D>> walls_of(const WallSpec& w, const std::vector<Material>& materials) {
+  std::vector<Wall<D>> out;
+  auto add = [&](Wall<D> wall) {
+    wall.material = material_index(materials, w.material);
+    wall.velocity = to_vec<D>(w.velocity);
+    wall.area = w.area;
+    out.push_back(wall);
+  };
+  Wall<D> wall;
+  wall.name = w.name;
+  if (w.type == "plane") {
+    wall.kind = WallKind::kPlane;
+    wall.point = to_vec<D>(w.point);
+    wall.normal = to_vec<D>(w.normal).normalized();
+    add(wall);
+  } else if (w.type == "segment") {
+    wall.kind = WallKind::kSegment;
+    wall.point = to_vec<D>(w.from);
+    wall.end = to_vec<D>(w.to);
+    add(wall);
+  } else {
+    // A polyline: segment k owns its start vertex; the open end's last vertex is
+    // owned by the last segment.
+    std::vector<List> pts = w.points;
+    if (w.closed) pts.push_back(pts.front());
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      Wall<D> seg;
+      seg.name = w.name + "_" + std::to_string(k);
+      seg.kind = WallKind::kSegment;
+      seg.point = to_vec<D>(pts[k]);
+      seg.end = to_vec<D>(pts[k + 1]);
+      seg.owns_end_vertex = !w.closed && k + 2 == pts.size();
+      add(seg);
+    }
+  }
+  return out;
+}
+
+template <int D>
+void add_cloud(const SceneSettings& s, const CloudSpec& cl, const std::string& key, World<D>& world,
+               Random& rng, std::vector<Sphere<D>>& placed) {
+  using Vec = typename Dim<D>::Vec;
+  const Vec lo = to_vec<D>(cl.lo), hi = to_vec<D>(cl.hi);
+  if (cl.shape != "sphere" && cl.shape != "disc") {
+    // Clumps: random orientations; bounding spheres kept apart.
+    GrainSpec spec;
+    spec.templates = s.templates;
+    spec.kinds[0].shape = cl.shape;
+    const auto m = material_index(s.materials, cl.material);
+    try {
+      add_random_grains<D>(world, resolve_kinds<D>(spec), lo, hi, cl.count, cl.porosity, cl.fuzz,
+                           s.materials[m].density, m, rng, to_vec<D>(cl.velocity), cl.radius,
+                           &placed);
+    } catch (const std::runtime_error& e) {
+      throw InputError(s.file, 0, key, e.what());
+    }
+    return;
+  }
+  const double mean = cl.radius > 0.0 ? cl.radius
+                                      : mean_radius_for_porosity<D>((hi - lo).prod(), cl.count,
+                                                                    cl.porosity, cl.fuzz);
+  // Solid fraction asked for: beyond what random placement can reach, say so at once
+  // rather than after trying (mean volume with radii uniform in mean (1 +- fuzz)).
+  const double f2 = cl.fuzz * cl.fuzz;
+  const double grain_volume = Dim<D>::volume(mean) * (D == 3 ? 1.0 + f2 : 1.0 + f2 / 3.0);
+  const double solid = static_cast<double>(cl.count) * grain_volume / (hi - lo).prod();
+  // Random sequential placement jams at about 38 % solid (spheres), 55 % (discs).
+  if (solid > (D == 3 ? 0.40 : 0.56))
+    throw InputError(s.file, 0, key,
+                     "too dense: " + std::to_string(cl.count) + " grains of mean radius " +
+                         format_number(mean) + " m would fill " +
+                         format_number(std::round(solid * 1000.0) / 10.0) +
+                         " % of the cloud's box; random placement jams near 38 % (spheres) or 55 % "
+                         "(discs): enlarge the box, or lower the count or the radius");
+  std::vector<Sphere<D>> grains;
+  try {
+    grains = random_cloud<D>(lo, hi, cl.count, mean, cl.fuzz, rng, placed);
+  } catch (const std::runtime_error& e) {
+    throw InputError(s.file, 0, key, e.what());
+  }
+  const auto m = material_index(s.materials, cl.material);
+  for (const auto& g : grains) {
+    world.particles.add(g.centre, g.radius, s.materials[m].density, m, to_vec<D>(cl.velocity));
+    placed.push_back(g);
+  }
+}
 
 template <int D>
 void build_world(const SceneSettings& s, World<D>& world) {
@@ -157,41 +254,8 @@ void build_world(const SceneSettings& s, World<D>& world) {
   world.dt_safety = s.time.safety;
   world.dt_update_interval = s.time.update_interval;
 
-  for (const auto& w : s.walls) {
-    auto add = [&](Wall<D> wall) {
-      wall.material = material_index(s.materials, w.material);
-      wall.velocity = to_vec<D>(w.velocity);
-      wall.area = w.area;
-      world.walls.push_back(wall);
-    };
-    Wall<D> wall;
-    wall.name = w.name;
-    if (w.type == "plane") {
-      wall.kind = WallKind::kPlane;
-      wall.point = to_vec<D>(w.point);
-      wall.normal = to_vec<D>(w.normal).normalized();
-      add(wall);
-    } else if (w.type == "segment") {
-      wall.kind = WallKind::kSegment;
-      wall.point = to_vec<D>(w.from);
-      wall.end = to_vec<D>(w.to);
-      add(wall);
-    } else {
-      // A polyline: segment k owns its start vertex; the open end's last vertex is
-      // owned by the last segment.
-      std::vector<List> pts = w.points;
-      if (w.closed) pts.push_back(pts.front());
-      for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-        Wall<D> seg;
-        seg.name = w.name + "_" + std::to_string(k);
-        seg.kind = WallKind::kSegment;
-        seg.point = to_vec<D>(pts[k]);
-        seg.end = to_vec<D>(pts[k + 1]);
-        seg.owns_end_vertex = !w.closed && k + 2 == pts.size();
-        add(seg);
-      }
-    }
-  }
+  for (const auto& w : s.walls)
+    for (const auto& wall : walls_of<D>(w, s.materials)) world.walls.push_back(wall);
   for (const auto& c : s.chains) {
     std::vector<Vec> nodes = {to_vec<D>(c.points.front())};
     for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
@@ -256,11 +320,13 @@ void build_world(const SceneSettings& s, World<D>& world) {
   for (std::size_t f = 0; f < s.particle_files.size(); ++f) {
     const auto& spec = s.particle_files[f];
     const auto m = material_index(s.materials, spec.material);
-    read_particle_file<D>(spec, f, s.file, [&](const Vec& x, double r, const Vec& v, int line) {
-      world.particles.add(x, r, s.materials[m].density, m, v);
-      placed.push_back({x, r});
-      source.push_back(spec.path + ":" + std::to_string(line));
-    });
+    read_particle_file<D>(spec, f, s.file, s.materials.size(),
+                          [&](const Vec& x, double r, const Vec& v, long long mat, int line) {
+                            const auto mi = mat < 0 ? m : static_cast<std::uint16_t>(mat);
+                            world.particles.add(x, r, s.materials[mi].density, mi, v);
+                            placed.push_back({x, r});
+                            source.push_back(spec.path + ":" + std::to_string(line));
+                          });
   }
   reject_input_overlaps<D>(placed, source, s.max_overlap, s.file);
   Random rng(s.seed);
@@ -277,56 +343,17 @@ void build_world(const SceneSettings& s, World<D>& world) {
               to_vec<D>(c.velocity));
     placed.push_back({to_vec<D>(c.position), c.scale * shape.bounding_radius});
   }
-  for (std::size_t c = 0; c < s.clouds.size(); ++c) {
-    const auto& cl = s.clouds[c];
-    const Vec lo = to_vec<D>(cl.lo), hi = to_vec<D>(cl.hi);
-    if (cl.shape != "sphere" && cl.shape != "disc") {
-      // Clumps: random orientations; bounding spheres kept apart.
-      GrainSpec spec;
-      spec.templates = s.templates;
-      spec.kinds[0].shape = cl.shape;
-      const auto m = material_index(s.materials, cl.material);
-      try {
-        add_random_grains<D>(world, resolve_kinds<D>(spec), lo, hi, cl.count, cl.porosity, cl.fuzz,
-                             s.materials[m].density, m, rng, to_vec<D>(cl.velocity), cl.radius,
-                             &placed);
-      } catch (const std::runtime_error& e) {
-        throw InputError(s.file, 0, "clouds." + std::to_string(c), e.what());
-      }
-      continue;
-    }
-    const double mean = cl.radius > 0.0 ? cl.radius
-                                        : mean_radius_for_porosity<D>((hi - lo).prod(), cl.count,
-                                                                      cl.porosity, cl.fuzz);
-    // Solid fraction asked for: beyond what random placement can reach, say so at once
-    // rather than after trying (mean volume with radii uniform in mean (1 +- fuzz)).
-    const double f2 = cl.fuzz * cl.fuzz;
-    const double grain_volume = Dim<D>::volume(mean) * (D == 3 ? 1.0 + f2 : 1.0 + f2 / 3.0);
-    const double solid = static_cast<double>(cl.count) * grain_volume / (hi - lo).prod();
-    // Random sequential placement jams at about 38 % solid (spheres), 55 % (discs).
-    if (solid > (D == 3 ? 0.40 : 0.56))
-      throw InputError(
-          s.file, 0, "clouds." + std::to_string(c),
-          "too dense: " + std::to_string(cl.count) + " grains of mean radius " +
-              format_number(mean) + " m would fill " +
-              format_number(std::round(solid * 1000.0) / 10.0) +
-              " % of the cloud's box; random placement jams near 38 % (spheres) or 55 % "
-              "(discs): enlarge the box, or lower the count or the radius");
-    std::vector<Sphere<D>> grains;
-    try {
-      grains = random_cloud<D>(lo, hi, cl.count, mean, cl.fuzz, rng, placed);
-    } catch (const std::runtime_error& e) {
-      throw InputError(s.file, 0, "clouds." + std::to_string(c), e.what());
-    }
-    const auto m = material_index(s.materials, cl.material);
-    for (const auto& g : grains) {
-      world.particles.add(g.centre, g.radius, s.materials[m].density, m, to_vec<D>(cl.velocity));
-      placed.push_back(g);
-    }
-  }
+  for (std::size_t c = 0; c < s.clouds.size(); ++c)
+    add_cloud(s, s.clouds[c], "clouds." + std::to_string(c), world, rng, placed);
 }
 
 template void build_world<2>(const SceneSettings&, World<2>&);
 template void build_world<3>(const SceneSettings&, World<3>&);
+template std::vector<Wall<2>> walls_of<2>(const WallSpec&, const std::vector<Material>&);
+template std::vector<Wall<3>> walls_of<3>(const WallSpec&, const std::vector<Material>&);
+template void add_cloud<2>(const SceneSettings&, const CloudSpec&, const std::string&, World<2>&,
+                           Random&, std::vector<Sphere<2>>&);
+template void add_cloud<3>(const SceneSettings&, const CloudSpec&, const std::string&, World<3>&,
+                           Random&, std::vector<Sphere<3>>&);
 
 }  // namespace geodem

@@ -10,10 +10,13 @@
 #include "contacts/bonds.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
+#include "io/particle_table.hpp"
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
+#include "measure/contact_network.hpp"
 #include "measure/measurements.hpp"
 #include "scene/build_scene.hpp"
+#include "scene/scene_stages.hpp"
 #include "world/step.hpp"
 #include "world/world_state.hpp"
 
@@ -50,11 +53,27 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   std::uint8_t finished = 0;  // the final outputs are written
   bool at_rest = false;
   std::string stop_reason = "end of duration";
+  // Stages: the current one, whether its start edits are made, where it started, and the
+  // reports of those finished (JSON text). A scene without [[stages]] is one stage.
+  const bool staged = !s.stages.empty();
+  const std::uint64_t stage_count = staged ? s.stages.size() : 1;
+  std::uint64_t stage = 0;
+  std::uint8_t stage_started = staged ? 0 : 1;
+  double stage_t0 = 0.0;
+  std::uint64_t stage_s0 = 0;
+  std::string stage_log = "[]";
   RunCheckpoints checkpoints("scene", D, s.resolved, opt.out_dir, s.checkpoint);
   Checkpoint resumed;
+  StateReader runner_in(nullptr, 0);
   if (opt.resume) {
     // A finished run may be extended, and may stop on other criteria.
     resumed = checkpoints.resume(s.file, {"time.duration", "time.steps", "stop"});
+    runner_in = StateReader(resumed.runner.data(), resumed.runner.size());
+    runner_in(stage), runner_in(stage_started), runner_in(stage_t0), runner_in(stage_s0);
+    runner_in(stage_log);
+    // The saved world has the walls and servos of the stages begun: redo those first.
+    for (std::uint64_t k = 0; staged && k < std::min(stage + stage_started, stage_count); ++k)
+      start_stage(s, k, w, true);
     StateReader in(resumed.world.data(), resumed.world.size());
     load_world_state(in, w);
   } else if (s.bonds_initial) {
@@ -72,14 +91,30 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   std::vector<std::string> cols = {"step",         "time",           "wall_s",
                                    "dt",           "kinetic_energy", "unbalanced",
                                    "coordination", "contacts",       "wall_contacts"};
+  if (staged) cols.insert(cols.begin() + 2, "stage");
   if (s.bonds_initial) cols.insert(cols.end(), {"bonds", "broken_bonds"});
   if (box) cols.push_back("porosity");
   for (int a = 0; a < D; ++a)
     for (int b = a; b < D; ++b) cols.push_back(std::string("stress_") + axis(a) + axis(b));
-  for (const auto& wall : w.walls) {
+  for (int a = 0; a < D; ++a)
+    for (int b = a; b < D; ++b) cols.push_back(std::string("fabric_") + axis(a) + axis(b));
+  cols.push_back("fabric_anisotropy");
+  // Every wall the scene ever has, in order of appearance; NaN while one is absent.
+  std::vector<Wall<D>> wall_cols;
+  for (const auto& spec : s.walls)
+    for (const auto& wall : walls_of<D>(spec, s.materials)) wall_cols.push_back(wall);
+  for (const auto& st : s.stages)
+    for (const auto& spec : st.add_walls)
+      for (const auto& wall : walls_of<D>(spec, s.materials)) wall_cols.push_back(wall);
+  for (const auto& wall : wall_cols) {
     for (int k = 0; k < D; ++k) cols.push_back("wall_" + wall.name + "_f" + axis(k));
     if (wall.area > 0.0) cols.push_back("wall_" + wall.name + "_stress");
   }
+  auto find_wall = [&w](const std::string& name) -> const Wall<D>* {
+    for (const auto& wall : w.walls)
+      if (wall.name == name) return &wall;
+    return nullptr;
+  };
   for (const auto& c : w.spars.chains)
     for (const char* q : {"_tension_first", "_tension_last", "_tension_max"})
       cols.push_back("chain_" + c.name + q);
@@ -94,8 +129,9 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   HistoryCsv history;
   checkpoints.outputs({&history});
   VtkSeries<D> vtk(opt.out_dir);
+  vtk.with_contacts(s.output.vtk_contacts);
   if (opt.resume) {
-    StateReader in(resumed.runner.data(), resumed.runner.size());
+    auto& in = runner_in;
     double wall_before = 0.0;  // wall time of the run before the checkpoint
     in(bonds_created), in(wall_before), in(finished), in(stop_reason);
     checkpoints.resume_clock(wall_before);
@@ -111,6 +147,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   auto elapsed = [&checkpoints] { return checkpoints.elapsed(); };
   auto checkpoint = [&] {
     checkpoints.write_with(w.step, w.time, [&](StateWriter& runner, StateWriter& world) {
+      runner(stage), runner(stage_started), runner(stage_t0), runner(stage_s0), runner(stage_log);
       runner(bonds_created), runner(elapsed()), runner(finished), runner(stop_reason);
       vtk.save(runner);
       save_world_state(world, w);
@@ -127,6 +164,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
                                coordination_number(w),
                                static_cast<double>(w.stats.contacts),
                                static_cast<double>(w.stats.wall_contacts)};
+    if (staged) row.insert(row.begin() + 2, static_cast<double>(stage + 1));
     if (s.bonds_initial) {
       row.push_back(static_cast<double>(intact_bonds(w)));
       row.push_back(static_cast<double>(w.broken_bonds));
@@ -136,13 +174,48 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     const auto sigma = average_stress(w, vb.volume());
     for (int a = 0; a < D; ++a)
       for (int b = a; b < D; ++b) row.push_back(sigma(a, b));
-    for (const auto& wall : w.walls) {
-      for (int k = 0; k < D; ++k) row.push_back(wall.force[k]);
-      if (wall.area > 0.0) row.push_back(wall.normal_stress());
+    const auto fabric = fabric_tensor(w);
+    for (int a = 0; a < D; ++a)
+      for (int b = a; b < D; ++b) row.push_back(fabric(a, b));
+    row.push_back(fabric_anisotropy<D>(fabric));
+    const double absent = std::numeric_limits<double>::quiet_NaN();
+    for (const auto& col : wall_cols) {
+      const Wall<D>* wall = find_wall(col.name);
+      for (int k = 0; k < D; ++k) row.push_back(wall ? wall->force[k] : absent);
+      if (col.area > 0.0) row.push_back(wall ? wall->normal_stress() : absent);
     }
     for (const auto& c : w.spars.chains)
       for (double t : chain_tensions(c)) row.push_back(t);
     history.row(row);
+  };
+
+  // What a finished stage reports: how it ended, the stress on each wall with an area, and
+  // each servo's target beside the stress it holds.
+  auto stage_report = [&](const StageSpec& st, const std::string& reason) {
+    nlohmann::json r = {{"name", st.name},
+                        {"stop_reason", reason},
+                        {"steps", w.step - stage_s0},
+                        {"start_time", stage_t0},
+                        {"end_time", w.time}};
+    nlohmann::json walls = nlohmann::json::object();
+    for (const auto& wall : w.walls)
+      if (wall.area > 0.0)
+        walls[wall.name] = {
+            {"normal_stress", wall.normal_stress()},
+            {"point", std::vector<double>(wall.point.data(), wall.point.data() + D)}};
+    r["walls"] = walls;
+    nlohmann::json servos = nlohmann::json::array();
+    for (const auto& m : st.walls)
+      if (m.servo)
+        for (auto i : wall_indices(w, m.wall)) {
+          const double sigma = w.walls[i].normal_stress();
+          servos.push_back({{"wall", w.walls[i].name},
+                            {"target", m.stress},
+                            {"stress", sigma},
+                            {"relative_error", m.stress > 0.0 ? sigma / m.stress - 1.0 : sigma}});
+        }
+    if (!servos.empty()) r["servos"] = servos;
+    return r;
   };
 
   Progress progress(opt.quiet);
@@ -152,45 +225,80 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     update_timestep(w);
     if (s.output.vtk) vtk.write(w);
   }
-  const double duration =
-      s.time.duration > 0.0 ? s.time.duration : std::numeric_limits<double>::infinity();
+  const double infinite = std::numeric_limits<double>::infinity();
+  const double duration = s.time.duration > 0.0 ? s.time.duration : infinite;
   const std::uint64_t max_steps =
       s.time.steps > 0 ? s.time.steps : std::numeric_limits<std::uint64_t>::max();
+  // A finished scene without stages goes on if its duration or step count was raised,
+  // unless it stopped at rest.
+  if (opt.resume && !staged && finished && !at_rest) stage = 0, stage_started = 1;
   // (a resumed run has the forces of its last step: the same figure as before it stopped)
   double unbalanced =
       opt.resume ? unbalanced_force_ratio(w) : std::numeric_limits<double>::quiet_NaN();
   const std::uint64_t first_step = w.step;
   try {
-    while (!at_rest && w.step < max_steps && w.time < duration * (1.0 - 1e-12)) {
-      const bool last = w.step + 1 >= max_steps || w.time + w.dt >= duration * (1.0 - 1e-12);
-      w.measure_this_step = last || w.step % s.output.history_every == 0;
-      step(w);
-      if (w.measure_this_step) {
-        record();
-        unbalanced = unbalanced_force_ratio(w);
-        const double fraction = std::max(
-            w.time / duration, static_cast<double>(w.step) / static_cast<double>(max_steps));
-        progress.update("scene", w.step, w.time, std::min(fraction, 1.0),
-                        "unbalanced " + format_sig(unbalanced), std::min(fraction, 1.0));
-        if (w.time >= s.stop.min_time &&
-            (s.stop.unbalanced_below > 0.0 || s.stop.kinetic_below > 0.0)) {
-          const bool ub_ok = s.stop.unbalanced_below <= 0.0 || unbalanced < s.stop.unbalanced_below;
-          const bool ke_ok =
-              s.stop.kinetic_below <= 0.0 || kinetic_energy(w) < s.stop.kinetic_below;
-          if (ub_ok && ke_ok) {
-            stop_reason = "at rest (stop criteria met)";
-            break;
+    while (!at_rest && stage < stage_count) {
+      if (!stage_started) {
+        start_stage(s, stage, w, false);
+        update_timestep(w);
+        stage_started = 1, stage_t0 = w.time, stage_s0 = w.step;
+      }
+      const StageSpec* st = staged ? &s.stages[stage] : nullptr;
+      const StopSpec& stop = st ? st->stop : s.stop;
+      const std::string label = st ? st->name : "scene";
+      const double end_time = !st                  ? duration
+                              : st->duration > 0.0 ? stage_t0 + st->duration
+                                                   : infinite;
+      const std::uint64_t end_step = !st             ? max_steps
+                                     : st->steps > 0 ? stage_s0 + st->steps
+                                                     : std::numeric_limits<std::uint64_t>::max();
+      std::string reason = "end of duration";
+      while (w.step < end_step && w.time < end_time * (1.0 - 1e-12)) {
+        const bool last = w.step + 1 >= end_step || w.time + w.dt >= end_time * (1.0 - 1e-12);
+        w.measure_this_step = last || w.step % s.output.history_every == 0;
+        step(w);
+        if (w.measure_this_step) {
+          record();
+          unbalanced = unbalanced_force_ratio(w);
+          const double fraction = std::max(
+              (w.time - stage_t0) / (end_time - stage_t0),
+              static_cast<double>(w.step - stage_s0) / static_cast<double>(end_step - stage_s0));
+          progress.update(label, w.step, w.time, std::min(fraction, 1.0),
+                          "unbalanced " + format_sig(unbalanced), std::min(fraction, 1.0));
+          if (w.time - stage_t0 >= stop.min_time &&
+              (stop.unbalanced_below > 0.0 || stop.kinetic_below > 0.0)) {
+            const bool ub_ok = stop.unbalanced_below <= 0.0 || unbalanced < stop.unbalanced_below;
+            const bool ke_ok = stop.kinetic_below <= 0.0 || kinetic_energy(w) < stop.kinetic_below;
+            bool servos_ok = true;  // each servo holds its target
+            for (const auto& m : st ? st->walls : std::vector<WallMotionSpec>{})
+              if (m.servo)
+                for (auto i : wall_indices(w, m.wall))
+                  servos_ok &= std::abs(w.walls[i].normal_stress() - m.stress) <=
+                               stop.servo_tolerance * m.stress;
+            if (ub_ok && ke_ok && servos_ok) {
+              reason = "at rest (stop criteria met)";
+              break;
+            }
           }
         }
+        if (s.output.vtk && s.output.vtk_every > 0 && w.step % s.output.vtk_every == 0)
+          vtk.write(w);
+        // A checkpoint closes a step whose outputs are all written.
+        if (interrupt_signal()) {
+          checkpoint();
+          status = "interrupted";
+          break;
+        }
+        if (checkpoints.due(w.step)) checkpoint();
       }
-      if (s.output.vtk && s.output.vtk_every > 0 && w.step % s.output.vtk_every == 0) vtk.write(w);
-      // A checkpoint closes a step whose outputs are all written.
-      if (interrupt_signal()) {
-        checkpoint();
-        status = "interrupted";
-        break;
+      if (status != "completed") break;
+      stop_reason = reason;
+      if (st) {
+        nlohmann::json log = nlohmann::json::parse(stage_log);
+        log.push_back(stage_report(*st, reason));
+        stage_log = log.dump();
       }
-      if (checkpoints.due(w.step)) checkpoint();
+      ++stage, stage_started = 0;
     }
     if (status == "completed") check_finite(w);
   } catch (const InstabilityError& e) {
@@ -203,6 +311,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   const double wall_s = elapsed();
   if (status == "completed" && !(finished && w.step == first_step)) {
     if (s.output.vtk && (s.output.vtk_every == 0 || w.step % s.output.vtk_every != 0)) vtk.write(w);
+    // The final packing, readable by [[particle_files]] (or [start] of another scene).
+    write_particle_table(opt.out_dir + "/particles.csv", w, s.materials);
     finished = 1;
     if (s.checkpoint.enabled()) checkpoint();
   }
@@ -229,7 +339,16 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
         std::isfinite(unbalanced) ? nlohmann::json(unbalanced) : nlohmann::json();
     results["coordination"] = coordination_number(w);
     if (box) results["porosity"] = porosity_in_box(w, *box);
+    const auto fabric = fabric_tensor(w);
+    nlohmann::json rows = nlohmann::json::array();
+    for (int a = 0; a < D; ++a) {
+      std::vector<double> row(D);
+      for (int b = 0; b < D; ++b) row[b] = fabric(a, b);
+      rows.push_back(row);
+    }
+    results["fabric"] = {{"tensor", rows}, {"anisotropy", fabric_anisotropy<D>(fabric)}};
   }
+  if (staged) results["stages"] = nlohmann::json::parse(stage_log);
   results["total_weight"] = body_weight(w);
   if (!w.particles.pos.empty()) {  // extent of the grain centres
     auto lo = w.particles.pos[0], hi = w.particles.pos[0];

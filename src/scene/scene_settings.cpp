@@ -2,25 +2,17 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <set>
+#include <sstream>
 
 #include "io/output_files.hpp"
 #include "scene/grain_spec_reader.hpp"
+#include "scene/scene_part_readers.hpp"
+#include "scene/stage_settings.hpp"
 
 namespace geodem {
-
-namespace {
-
-double friction_from(TableReader& t, double fallback) {
-  if (t.has("friction") && t.has("friction_deg"))
-    t.fail("friction_deg", "give either 'friction' (coefficient) or 'friction_deg', not both");
-  if (t.has("friction_deg"))
-    return std::tan(t.in_range("friction_deg", 0.0, 0.0, 89.9) * std::numbers::pi / 180.0);
-  return t.non_negative("friction", fallback);
-}
-
-}  // namespace
 
 Material read_material(TableReader& t, const std::string& fallback_name) {
   // Stiffnesses beyond any mineral's (1e15 Pa or N/m) only make the time step vanish.
@@ -37,7 +29,7 @@ Material read_material(TableReader& t, const std::string& fallback_name) {
   m.density = t.positive("density", 2600.0);
   const std::string law = t.choice("law", "linear", {"linear", "hertz"});
   m.law = law == "hertz" ? LawKind::kHertz : LawKind::kLinear;
-  m.friction = friction_from(t, 0.5);
+  m.friction = read_friction(t, 0.5);
   m.restitution = t.in_range("restitution", 1.0, 1e-6, 1.0);
   m.tangential_damping = t.boolean("tangential_damping", false);
   if (m.law == LawKind::kLinear) {
@@ -76,6 +68,8 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
   r.string("title", "");
   const std::size_t D = static_cast<std::size_t>(s.dimension);
 
+  // A scene in stages gives each stage its duration and stop criteria.
+  const bool staged = r.has("stages");
   if (auto t = r.table("time")) {
     double step = 0.0;
     if (auto word = t->number_or_string("step", step, "auto")) {
@@ -86,18 +80,22 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     s.time.step = step;
     s.time.safety = t->in_range("safety", 0.8, 1e-3, 1.0);
     s.time.update_interval = static_cast<int>(t->integer("update_interval", 50, 1, 1000000));
+    if (staged && (t->has("duration") || t->has("steps")))
+      t->fail(t->has("duration") ? "duration" : "steps",
+              "the scene has [[stages]]: give each stage its own 'duration' or 'steps'");
     s.time.duration = t->non_negative("duration", 0.0);
     s.time.steps = static_cast<std::uint64_t>(t->integer("steps", 0, 0, (1LL << 50)));
-    if (s.time.duration == 0.0 && s.time.steps == 0)
+    if (!staged && s.time.duration == 0.0 && s.time.steps == 0)
       t->fail("duration", "give the simulated time 'duration' (s) or a number of 'steps'");
     t->finish();
-  } else {
+  } else if (!staged) {
     r.fail("time", "missing [time] table (duration or steps)");
   }
   if (auto t = r.table("stop")) {
-    s.stop.unbalanced_below = t->non_negative("unbalanced_below", 0.0);
-    s.stop.kinetic_below = t->non_negative("kinetic_below", 0.0);
-    s.stop.min_time = t->non_negative("min_time", 0.0);
+    if (staged)
+      t->fail("unbalanced_below",
+              "the scene has [[stages]]: give each stage its own [stages.stop] criteria");
+    s.stop = read_stop(*t);
     t->finish();
   }
   s.gravity = List(D, 0.0);
@@ -129,10 +127,12 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
       r.fail("materials", "materials '" + s.materials.front().name + "' and '" + m.name +
                               "' use different contact laws; all materials of a scene (walls "
                               "included) must use the same law");
+  ScenePartContext parts;
+  parts.dimension = s.dimension;
+  parts.materials = names;
+  parts.default_material = s.materials.front().name;
   auto material_name = [&](TableReader& t, const std::string& key) {
-    const std::string m = t.string(key, s.materials.front().name);
-    if (!names.count(m)) t.fail(key, "unknown material '" + m + "'");
-    return m;
+    return read_material_name(t, key, parts);
   };
 
   for (auto& t : r.tables("pairs")) {
@@ -141,7 +141,7 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     for (const auto& m : ab)
       if (!names.count(m)) t.fail("materials", "unknown material '" + m + "'");
     p.a = ab[0], p.b = ab[1];
-    if (t.has("friction") || t.has("friction_deg")) p.friction = friction_from(t, 0.0);
+    if (t.has("friction") || t.has("friction_deg")) p.friction = read_friction(t, 0.0);
     if (t.has("restitution")) p.restitution = t.in_range("restitution", 1.0, 1e-6, 1.0);
     if (t.has("kn")) p.kn = t.positive("kn", 1.0);
     if (t.has("kt")) p.kt = t.non_negative("kt", 0.0);
@@ -150,40 +150,14 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
   }
 
   auto vec = [&](TableReader& t, const std::string& key, const List& fallback) {
-    List v = t.numbers(key, fallback, D);
-    if (v.size() != D)
-      t.fail(key,
-             "expected " + std::to_string(D) + " components for dimension " + std::to_string(D));
-    return v;
+    return read_vector(t, key, fallback, s.dimension);
   };
   const List zero(D, 0.0);
   std::set<std::string> wall_names;
   for (auto& t : r.tables("walls")) {
-    WallSpec w;
-    w.name = t.string("name", "wall" + std::to_string(s.walls.size()));
-    if (!wall_names.insert(w.name).second) t.fail("name", "duplicate wall name '" + w.name + "'");
-    w.type = t.choice("type", "plane", {"plane", "segment", "polyline"});
-    w.material = material_name(t, "material");
-    w.velocity = vec(t, "velocity", zero);
-    w.area = t.non_negative("area", 0.0);
-    if (w.type == "plane") {
-      w.point = vec(t, "point", zero);
-      w.normal = vec(t, "normal", zero);
-      double n2 = 0.0;
-      for (double x : w.normal) n2 += x * x;
-      if (n2 == 0.0) t.fail("normal", "expected a non-zero normal vector");
-    } else {
-      if (s.dimension != 2) t.fail("type", "segments and polylines are 2D boundaries");
-      if (w.type == "segment") {
-        w.from = vec(t, "from", zero);
-        w.to = vec(t, "to", zero);
-      } else {
-        w.points = t.number_rows("points", 2);
-        if (w.points.size() < 2) t.fail("points", "a polyline needs at least 2 points");
-        w.closed = t.boolean("closed", false);
-      }
-    }
-    s.walls.push_back(w);
+    s.walls.push_back(read_wall(t, parts, s.walls.size()));
+    if (!wall_names.insert(s.walls.back().name).second)
+      t.fail("name", "duplicate wall name '" + s.walls.back().name + "'");
     t.finish();
   }
 
@@ -268,23 +242,9 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     b->finish();
   }
 
+  parts.templates = &s.templates;
   for (auto& t : r.tables("clouds")) {
-    CloudSpec c;
-    c.shape = t.string("grain", D == 3 ? "sphere" : "disc");
-    check_shape(t, "grain", c.shape, s.templates);
-    c.lo = vec(t, "min", zero);
-    c.hi = vec(t, "max", zero);
-    for (std::size_t k = 0; k < D; ++k)
-      if (!(c.hi[k] > c.lo[k])) t.fail("max", "each component must exceed the one of 'min'");
-    c.count = static_cast<std::size_t>(t.integer("count", 0, 1, 100000000));
-    if (t.has("radius") == t.has("porosity"))
-      t.fail("radius", "give either the mean 'radius' or the cloud 'porosity'");
-    if (t.has("radius")) c.radius = t.positive("radius", 0.0);
-    if (t.has("porosity")) c.porosity = t.in_range("porosity", 0.5, 0.3, 0.999);
-    c.fuzz = t.in_range("radius_fuzz", 0.0, 0.0, 0.95);
-    c.velocity = vec(t, "velocity", zero);
-    c.material = material_name(t, "material");
-    s.clouds.push_back(c);
+    s.clouds.push_back(read_cloud(t, parts));
     t.finish();
   }
   for (auto& t : r.tables("particle_files")) {
@@ -295,15 +255,26 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     f.path = p.is_absolute() ? name : (std::filesystem::path(file).parent_path() / p).string();
     std::error_code ec;  // a name the system cannot take is not found, not a crash
     if (!std::filesystem::is_regular_file(f.path, ec)) t.fail("file", "file not found: " + f.path);
-    const std::vector<std::string> fallback =
-        D == 3 ? std::vector<std::string>{"x", "y", "z", "radius"}
-               : std::vector<std::string>{"x", "y", "radius"};
+    std::vector<std::string> fallback = D == 3 ? std::vector<std::string>{"x", "y", "z", "radius"}
+                                               : std::vector<std::string>{"x", "y", "radius"};
+    // A table written by a scene (io/particle_table.hpp) names its columns in a comment.
+    if (!t.has("columns")) {
+      std::ifstream in(f.path);
+      for (std::string line; std::getline(in, line) && (line.empty() || line[0] == '#');)
+        if (line.rfind("# columns:", 0) == 0) {
+          std::istringstream words(line.substr(10));
+          std::vector<std::string> header;
+          for (std::string c; words >> c;) header.push_back(c);
+          if (!header.empty()) fallback = header;
+        }
+    }
     f.columns = t.strings("columns", fallback);
-    const std::set<std::string> known = {"id", "x", "y", "z", "radius", "vx", "vy", "vz", "_"};
+    const std::set<std::string> known = {"id", "x",  "y",  "z",        "radius",
+                                         "vx", "vy", "vz", "material", "_"};
     std::set<std::string> seen;
     for (const auto& c : f.columns) {
       if (!known.count(c))
-        t.fail("columns", "unknown column '" + c + "'; known: id x y z radius vx vy vz _");
+        t.fail("columns", "unknown column '" + c + "'; known: id x y z radius vx vy vz material _");
       if (c != "_" && !seen.insert(c).second) t.fail("columns", "column '" + c + "' given twice");
     }
     for (const char* c : {"x", "y", "z"})
@@ -320,17 +291,17 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
   if (s.particles.empty() && s.clouds.empty() && s.particle_files.empty() && s.clumps.empty())
     r.fail("particles", "the scene has no grains: add [[particles]], [[clumps]] or [[clouds]]");
 
+  if (staged) s.stages = read_stages(r, parts, s);
+
   if (auto t = r.table("output")) {
     s.output.history_every =
         static_cast<std::uint64_t>(t->integer("history_every", 1000, 1, (1LL << 50)));
     s.output.vtk_every = static_cast<std::uint64_t>(t->integer("vtk_every", 0, 0, (1LL << 50)));
     s.output.vtk = t->boolean("vtk", true);
+    s.output.vtk_contacts = t->boolean("vtk_contacts", false);
     s.output.plots = t->boolean("plots", true);
     if (auto b = t->table("measure_box")) {
-      const List lo = vec(*b, "min", zero), hi = vec(*b, "max", zero);
-      for (std::size_t k = 0; k < D; ++k)
-        if (!(hi[k] > lo[k])) b->fail("max", "each component must exceed the one of 'min'");
-      s.output.measure_box = {lo, hi};
+      s.output.measure_box = read_box(*b, s.dimension);
       b->finish();
     }
     t->finish();

@@ -91,14 +91,50 @@ struct StopSpec {
   double unbalanced_below = 0.0;  // 0: off
   double kinetic_below = 0.0;     // J; 0: off
   double min_time = 0.0;
+  // A stage with servos is at rest only when each holds its target within this fraction.
+  double servo_tolerance = 0.01;
 };
 
 struct OutputSpec {
   std::uint64_t history_every = 1000;
   std::uint64_t vtk_every = 0;  // 0: first and last state only
   bool vtk = true;
+  bool vtk_contacts = false;  // force chains: the contact network in each VTK frame
   bool plots = true;
   std::optional<std::pair<List, List>> measure_box;
+};
+
+// How a wall moves during a stage: at a set velocity, or as a plate held at a normal
+// stress by a servo (controllers/plate_servo.hpp).
+struct WallMotionSpec {
+  std::string wall;
+  List velocity;        // empty with a servo
+  double stress = 0.0;  // servo target (Pa; N/m in 2D)
+  bool servo = false;
+  double max_speed = 0.0, gain = 0.5, integral_gain = 0.05;
+};
+
+// New velocity of a chain's held nodes during a stage.
+struct ChainMotionSpec {
+  std::string chain;
+  List velocity;
+};
+
+// One stage of a scene: the edits made at its start, then a run until its duration or
+// step count, or until its stop criteria hold. What a stage does not change stays.
+struct StageSpec {
+  std::string name;
+  double duration = 0.0;    // s, from the stage's start (0: not limited by time)
+  std::uint64_t steps = 0;  // steps of this stage (0: not limited)
+  StopSpec stop;            // min_time counts from the stage's start
+  std::optional<List> gravity;
+  std::optional<double> friction, local_damping;
+  std::vector<std::string> remove_walls;
+  std::vector<std::pair<List, List>> remove_grains;  // boxes: grains with centres inside
+  std::vector<WallSpec> add_walls;
+  std::vector<CloudSpec> clouds;
+  std::vector<WallMotionSpec> walls;
+  std::vector<ChainMotionSpec> chains;
 };
 
 struct SceneSettings {
@@ -123,6 +159,7 @@ struct SceneSettings {
   double bond_gap_tolerance = 0.0;
   std::vector<CloudSpec> clouds;
   std::vector<ParticleFileSpec> particle_files;
+  std::vector<StageSpec> stages;  // empty: one stage given by [time] and [stop]
   OutputSpec output;
   CheckpointSpec checkpoint;
   nlohmann::json resolved;  // every setting with its value, defaults included

@@ -32,6 +32,7 @@ struct Wall {
   // Results of the current step.
   Vec force = Vec::Zero();         // force exerted by the grains on the wall
   double stiffness = 0.0;          // sum of its contacts' normal stiffnesses (for servo control)
+  double dashpot = 0.0;            // sum of their normal dashpot coefficients (N s/m)
   Vec displacement = Vec::Zero();  // since the neighbour list was built
 
   double normal_stress() const { return area > 0.0 ? -force.dot(normal) / area : 0.0; }

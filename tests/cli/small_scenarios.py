@@ -186,3 +186,84 @@ damping = 0.1
 [output]
 plots = false
 """
+
+# The staged scene of examples/staged2d at a small size (about 300 discs): settle on a
+# trap-door gate, remove it, level the deposit, load it with a servo plate.
+SMALL_STAGED = """
+kind = "scene"
+dimension = 2
+seed = 1
+[time]
+step = "auto"
+safety = 0.5
+[physics]
+local_damping = 0.3
+[[materials]]
+name = "sand"
+density = 2650.0
+young = 2e6
+friction_deg = 30.0
+restitution = 0.5
+[[walls]]
+name = "floor"
+normal = [0.0, 1.0]
+[[walls]]
+name = "left"
+normal = [1.0, 0.0]
+[[walls]]
+name = "right"
+point = [0.1, 0.0]
+normal = [-1.0, 0.0]
+[[walls]]
+name = "gate"
+point = [0.0, 0.05]
+normal = [0.0, 1.0]
+[[clouds]]
+min = [0.0, 0.05]
+max = [0.1, 0.2]
+count = 300
+radius = 0.002
+radius_fuzz = 0.25
+[[stages]]
+name = "settle"
+gravity = [0.0, -9.81]
+duration = 1.0
+[stages.stop]
+unbalanced_below = 2e-3
+min_time = 0.2
+[[stages]]
+name = "drop"
+remove_walls = ["gate"]
+duration = 1.0
+[stages.stop]
+unbalanced_below = 2e-3
+min_time = 0.1
+[[stages]]
+name = "excavate"
+duration = 0.5
+[[stages.remove_grains]]
+min = [0.0, 0.035]
+max = [0.1, 1.0]
+[stages.stop]
+unbalanced_below = 2e-3
+min_time = 0.02
+[[stages]]
+name = "load"
+duration = 1.0
+[[stages.add_walls]]
+name = "plate"
+point = [0.0, 0.045]
+normal = [0.0, -1.0]
+area = 0.1
+[[stages.walls]]
+name = "plate"
+servo_stress = 10e3
+max_speed = 0.05
+[stages.stop]
+unbalanced_below = 1e-3
+min_time = 0.1
+[output]
+history_every = 100
+vtk = false
+plots = false
+"""

@@ -34,7 +34,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "cli"))
 from small_scenarios import (BASE, CHECKPOINT_SCENE, LAB_CHECKPOINT_TRIAXIAL,  # noqa: E402
-                             SMALL_PULLOUT, shear)
+                             SMALL_PULLOUT, SMALL_STAGED, shear)
 
 CHECKPOINT = "\n[checkpoint]\nevery_steps = {every}\nkeep = 2\n"
 
@@ -55,6 +55,7 @@ PULLOUT_SEEDS = PULLOUT.replace("seed = 1", "seed = 1\nseeds = 2").replace(
 # kind: (scenario, checkpoint period in steps (None: none), a study)
 CASES = {
     "scene": (SCENE, 300, False),
+    "staged": (SMALL_STAGED, 1500, False),
     "triaxial": (TRIAXIAL, 2500, False),
     "pullout": (PULLOUT, 3000, False),
     "interface_shear": (SHEAR, None, False),

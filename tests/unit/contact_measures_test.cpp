@@ -1,5 +1,5 @@
 // Pair-law mixing rules, the Love-Weber average stress of a known static chain of forces,
-// and the automatic time step.
+// the fabric tensor of lattices, and the automatic time step.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +10,7 @@
 #include "broadphase/neighbour_search.hpp"
 #include "clumps/clump_dynamics.hpp"
 #include "integrate/critical_timestep.hpp"
+#include "measure/contact_network.hpp"
 #include "measure/measurements.hpp"
 #include "test_util.hpp"
 #include "world/step.hpp"
@@ -299,6 +300,64 @@ TEST(CriticalTimestep, HertzBelowTheContactPeriod) {
   const double k = 2.0 * estar * std::sqrt(0.5 * r * delta);  // dF/d(delta) at this overlap
   EXPECT_GT(dt, 0.0);
   EXPECT_LT(dt, std::sqrt(mass(w, 0) / k));
+}
+
+// Fabric of lattices in closed form. A hexagonal disc patch: n_h horizontal contacts and n_d at
+// +-60 degrees give F_xx = (n_h + n_d / 4) / N, F_yy = 3 n_d / 4 / N (isotropic only in an
+// infinite lattice: the patch's edges lack diagonal contacts). A cubic sphere patch has
+// F = I / 3 exactly; a single row of grains, F = e1 (x) e1 and anisotropy D (the largest
+// for a unit trace). The contact network lists every touching pair
+// once, with the lattice's overlap and the linear law's force kn delta.
+TEST(Fabric, LatticesInClosedForm) {
+  const double r = 1.0, delta = 1e-3, d = 2.0 * r - delta;
+  {
+    World<2> w;
+    const auto mat = add_material(w, linear_material(1e5, 5e4, 0.5, 0.5));
+    w.resolve_pair_laws();
+    for (int row = 0; row < 9; ++row)
+      for (int col = 0; col < 9; ++col)
+        w.particles.add(vec<2>(d * (col + 0.5 * (row % 2)), d * std::sqrt(3.0) / 2.0 * row), r,
+                        1000.0, mat);
+    build_neighbour_list(w);
+    // 9 rows of 8 horizontal pairs, and 8 gaps between rows of 17 diagonal pairs each.
+    const double nh = 9 * 8, nd = 8 * 17, n = nh + nd;
+    const auto f = fabric_tensor(w);
+    EXPECT_NEAR(f(0, 0), (nh + nd / 4.0) / n, 1e-12);
+    EXPECT_NEAR(f(1, 1), 0.75 * nd / n, 1e-12);
+    EXPECT_NEAR(f(0, 1), 0.0, 1e-12);
+    EXPECT_NEAR(fabric_anisotropy<2>(f), 2.0 * (f(0, 0) - f(1, 1)), 1e-12);
+    const auto c = contact_network(w);
+    EXPECT_EQ(c.size(), static_cast<std::size_t>(n));
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      EXPECT_LT(c.i[k], c.j[k]);
+      EXPECT_NEAR(c.overlap[k], delta, 1e-12);
+      EXPECT_NEAR(c.normal_force[k], 1e5 * delta, 1e-6);
+      EXPECT_NEAR(c.normal[k].norm(), 1.0, 1e-14);
+    }
+  }
+  {
+    World<3> w;
+    const auto mat = add_material(w, linear_material(1e5, 5e4, 0.5, 0.5));
+    w.resolve_pair_laws();
+    for (int a = 0; a < 5; ++a)
+      for (int b = 0; b < 5; ++b)
+        for (int c = 0; c < 5; ++c) w.particles.add(vec<3>(d * a, d * b, d * c), r, 1000.0, mat);
+    build_neighbour_list(w);
+    const auto f = fabric_tensor(w);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) EXPECT_NEAR(f(a, b), a == b ? 1.0 / 3.0 : 0.0, 1e-12);
+    EXPECT_EQ(contact_network(w).size(), 3u * 5u * 5u * 4u);
+  }
+  {
+    World<3> w;
+    const auto mat = add_material(w, linear_material(1e5, 5e4, 0.5, 0.5));
+    w.resolve_pair_laws();
+    for (int a = 0; a < 6; ++a) w.particles.add(vec<3>(d * a, 0.0, 0.0), r, 1000.0, mat);
+    build_neighbour_list(w);
+    const auto f = fabric_tensor(w);
+    EXPECT_NEAR(f(0, 0), 1.0, 1e-14);
+    EXPECT_NEAR(fabric_anisotropy<3>(f), 3.0, 1e-12);
+  }
 }
 
 }  // namespace

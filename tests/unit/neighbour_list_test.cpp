@@ -1,6 +1,7 @@
 // The Verlet list against brute force on random clouds: every grain pair closer than
 // r_i + r_j + skin and every grain-wall pair closer than r + skin is listed, and nothing
-// else; rows are sorted and hold each pair once; history is carried over by a rebuild.
+// else; rows are sorted and hold each pair once; history is carried over by a rebuild, by
+// the removal of grains (excavation) and by the removal of a wall.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 
 #include "broadphase/neighbour_search.hpp"
 #include "test_util.hpp"
+#include "world/world_editing.hpp"
 
 namespace geodem::test {
 namespace {
@@ -215,6 +217,75 @@ TYPED_TEST(NeighbourListTest, RebuildCarriesHistory) {
       }
     }
   EXPECT_GT(kept_walls, 10u);
+}
+
+// Grains removed with ContactHistory::kKeep: every pair of two remaining grains keeps its
+// spring (labelled here by the grains' ids), pairs with a removed grain are gone, wall
+// contacts stay. Then a wall removed: its contacts go, the others keep theirs renumbered.
+TYPED_TEST(NeighbourListTest, EditsKeepTheHistoryOfWhatRemains) {
+  constexpr int D = TypeParam::value;
+  World<D> w = random_cloud<D>(Cloud::kUniform, 400, D == 2 ? 35.0 : 12.0, 7);
+  build_neighbour_list(w);
+  auto& P = w.particles;
+  auto& L = w.nlist;
+  auto code = [](double a, double b) {
+    if constexpr (D == 2) {
+      return a * 100000 + b;
+    } else {
+      Vec<D> v = Vec<D>::Constant(a);
+      v[1] = b;
+      return v;
+    }
+  };
+  std::set<std::pair<std::uint64_t, std::uint64_t>> kept_pairs;
+  std::set<std::pair<std::uint64_t, std::uint32_t>> wall_pairs;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+      const auto a = P.id[i], b = P.id[L.other[k]];
+      L.spring[k] = code(double(a), double(b));
+      if (a % 3 != 0 && b % 3 != 0) kept_pairs.emplace(a, b);
+    }
+    for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
+      L.wall_spring[k] = code(double(P.id[i]), 1000.0 + L.wall[k]);
+      if (P.id[i] % 3 != 0) wall_pairs.emplace(P.id[i], L.wall[k]);
+    }
+  }
+  const auto removed = remove_grains(
+      w, grains_where(w, [&](std::size_t i) { return P.id[i] % 3 == 0; }), ContactHistory::kKeep);
+  EXPECT_GT(removed, 100u);
+  std::set<std::pair<std::uint64_t, std::uint64_t>> after;
+  std::set<std::pair<std::uint64_t, std::uint32_t>> after_walls;
+  ASSERT_EQ(L.start.size(), P.size() + 1);
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+      const auto a = P.id[i], b = P.id[L.other[k]];
+      EXPECT_LT(i, L.other[k]);
+      EXPECT_EQ(L.spring[k], code(double(a), double(b)));
+      after.emplace(a, b);
+    }
+    for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
+      EXPECT_EQ(L.wall_spring[k], code(double(P.id[i]), 1000.0 + L.wall[k]));
+      after_walls.emplace(P.id[i], L.wall[k]);
+    }
+  }
+  EXPECT_EQ(after, kept_pairs);
+  EXPECT_EQ(after_walls, wall_pairs);
+
+  const std::size_t walls_before = w.walls.size();
+  remove_wall(w, 1);
+  ASSERT_EQ(w.walls.size(), walls_before - 1);
+  ASSERT_EQ(w.wall_laws.size(), w.materials.size() * w.walls.size());
+  std::size_t still = 0;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
+      const std::uint32_t old = L.wall[k] >= 1 ? L.wall[k] + 1 : L.wall[k];
+      EXPECT_EQ(L.wall_spring[k], code(double(P.id[i]), 1000.0 + old));
+      ++still;
+    }
+  std::size_t expected = 0;
+  for (const auto& [id, wall] : wall_pairs) expected += wall != 1 ? 1 : 0;
+  EXPECT_EQ(still, expected);
+  EXPECT_LT(expected, wall_pairs.size());
 }
 
 }  // namespace
