@@ -58,9 +58,24 @@ def plot_scene(out, summary, h):
     ax2.semilogy(t, positive(h["unbalanced"]), color="tab:red", label="unbalanced force ratio")
     ax2.set_ylabel("unbalanced force ratio", color="tab:red")
     ax.set_title("Energy and equilibrium")
+    stages = summary.get("results", {}).get("stages", [])
+
+    def mark_stages(axis):
+        """Dotted lines at the stages' starts, named at the top."""
+        for st in stages[1:]:
+            axis.axvline(st["start_time"], color="0.5", ls=":", lw=0.8)
+        for st in stages:
+            axis.text(st["start_time"], 0.98, st["name"] + " ", transform=axis.get_xaxis_transform(),
+                      fontsize=7, va="top", ha="right", rotation=90, color="0.3")
+
+    mark_stages(ax)
     save(fig, out, "energy.png", made)
 
-    walls = summary.get("scenario", {}).get("walls", [])
+    scenario = summary.get("scenario", {})
+    # The walls of the scene, then those its stages add.
+    walls = list(scenario.get("walls", []))
+    for st in scenario.get("stages", []):
+        walls += st.get("add_walls", [])
     dim = summary.get("scenario", {}).get("dimension", 3)
     axes = "xyz"[:dim]
     if walls:
@@ -93,6 +108,7 @@ def plot_scene(out, summary, h):
         unit = "N" if dim == 3 else "N/m"
         ax.set_ylabel(f"force on wall ({unit}): normal; polyline segments: magnitude")
         ax.legend(fontsize=8)
+        mark_stages(ax)
         ax.set_title("Wall forces")
         save(fig, out, "wall_forces.png", made)
     return made
