@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "base/error.hpp"
+#include "io/checkpoint.hpp"
 #include "io/run_output.hpp"
 #include "kinds/scenario_kind.hpp"
 #include "scene/scene_settings.hpp"
@@ -143,6 +144,36 @@ PYBIND11_MODULE(geodem, m) {
       "files as `geodem run`; returns summary.json as a dict (plus its exit_code).");
 
   geodem::python::bind_scenes(m);
+  m.def(
+      "load",
+      [](const std::string& path) -> py::object {
+        geodem::Checkpoint c;
+        try {
+          c = geodem::read_checkpoint(path);
+        } catch (const geodem::CheckpointError& e) {
+          throw geodem::InputError(path, 0, "path",
+                                   std::string("not a readable checkpoint: ") + e.what());
+        }
+        if (c.kind != "scene")
+          throw geodem::InputError(path, 0, "kind",
+                                   "a checkpoint of kind \"" + c.kind +
+                                       "\": geodem.load reads those of scenes (resume the other "
+                                       "kinds with geodem.run(..., resume=True))");
+        std::string name;
+        const auto l = load(py::module_::import("json").attr("loads")(c.scenario), {}, name);
+        geodem::SceneSettings s = geodem::read_scene(l.root, path);
+        if (s.dimension == 2) {
+          geodem::python::Scene<2> scene(std::move(s));
+          scene.load_state(c.world);
+          return py::cast(std::move(scene));
+        }
+        geodem::python::Scene<3> scene(std::move(s));
+        scene.load_state(c.world);
+        return py::cast(std::move(scene));
+      },
+      py::arg("path"),
+      "A scene from a checkpoint file written by Scene.save (or by a scene run of the command "
+      "line): the same state, bit for bit, stepped on as if it had never stopped.");
   m.def(
       "scene",
       [](py::handle scenario, const std::vector<std::string>& overrides) -> py::object {

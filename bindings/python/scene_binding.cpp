@@ -6,11 +6,17 @@
 
 #include <limits>
 
+#include <filesystem>
+
 #include "base/error.hpp"
 #include "contacts/bonds.hpp"
+#include "io/checkpoint.hpp"
+#include "measure/contact_network.hpp"
 #include "measure/measurements.hpp"
 #include "scene/build_scene.hpp"
 #include "world/step.hpp"
+#include "world/world_editing.hpp"
+#include "world/world_state.hpp"
 
 namespace geodem::python {
 
@@ -54,6 +60,36 @@ std::size_t Scene<D>::wall_index(const std::string& name) const {
   std::string known;
   for (const auto& w : world_.walls) known += (known.empty() ? "" : ", ") + w.name;
   throw py::key_error("no wall '" + name + "'; the walls are: " + known);
+}
+
+template <int D>
+std::string Scene<D>::write_vtk(const std::string& folder, bool contacts) {
+  if (!vtk_ || folder != vtk_folder_) {
+    std::filesystem::create_directories(std::filesystem::path(folder) / "vtk");
+    vtk_ = std::make_shared<VtkSeries<D>>(folder);
+    vtk_folder_ = folder;
+  }
+  vtk_->with_contacts(contacts);
+  vtk_->write(world_);
+  return folder + "/vtk/particles.pvd";
+}
+
+template <int D>
+void Scene<D>::save(const std::string& path) const {
+  Checkpoint c;
+  c.kind = "scene";
+  c.dimension = D;
+  c.step = world_.step;
+  c.time = world_.time;
+  c.scenario = settings_.resolved.dump();
+  write_checkpoint_file(path, c, [this](StateWriter& out) { save_world_state(out, world_); });
+}
+
+template <int D>
+void Scene<D>::load_state(const std::string& archive) {
+  StateReader in(archive.data(), archive.size());
+  load_world_state_with_walls(in, world_);
+  world_.controllers.clear();
 }
 
 namespace {
@@ -161,7 +197,114 @@ void bind(py::module_& m, const char* name) {
             auto& w = s.world().walls[s.wall_index(wall)];
             for (int k = 0; k < D; ++k) w.velocity[k] = v[static_cast<std::size_t>(k)];
           },
-          "Moves the wall at this velocity (m/s) from the next step on.");
+          "Moves the wall at this velocity (m/s) from the next step on.")
+      .def(
+          "remove_wall",
+          [](S& s, const std::string& wall) { remove_wall(s.world(), s.wall_index(wall)); },
+          "Removes the wall; the other walls keep their contacts.")
+      .def(
+          "set_friction",
+          [](S& s, double mu) {
+            if (!(mu >= 0.0)) throw py::value_error("friction must be a coefficient >= 0");
+            set_friction(s.world(), mu);
+          },
+          "Sets the friction coefficient of every contact (grain-grain, grain-wall, "
+          "grain-chain); springs above the new Coulomb limit slide back to it at the next "
+          "step.")
+      .def(
+          "set_gravity",
+          [](S& s, const std::vector<double>& g) {
+            if (g.size() != static_cast<std::size_t>(D))
+              throw py::value_error("gravity has " + std::to_string(D) + " components");
+            for (int k = 0; k < D; ++k) s.world().gravity[k] = g[static_cast<std::size_t>(k)];
+          },
+          "Sets the gravity vector (m/s^2).")
+      .def(
+          "remove_grains",
+          [](S& s, py::array_t<bool, py::array::c_style | py::array::forcecast> mask) {
+            auto& w = s.world();
+            if (mask.ndim() != 1 || static_cast<std::size_t>(mask.shape(0)) != w.particles.size())
+              throw py::value_error("expected a boolean mask with one entry per grain (" +
+                                    std::to_string(w.particles.size()) + ")");
+            std::vector<char> remove(w.particles.size());
+            for (std::size_t i = 0; i < remove.size(); ++i) remove[i] = mask.data()[i];
+            const std::size_t n = remove_grains(w, remove, ContactHistory::kKeep);
+            update_timestep(w);
+            return n;
+          },
+          py::arg("mask"),
+          "Removes the grains where mask is True (whole clumps when a member is); the others "
+          "keep their contacts. Returns how many grains left. Views taken before are stale.")
+      .def(
+          "add_grains",
+          [](S& s, py::array_t<double, py::array::c_style | py::array::forcecast> positions,
+             py::array_t<double, py::array::c_style | py::array::forcecast> radii,
+             py::object velocities, const std::string& material) {
+            auto& w = s.world();
+            const auto n = positions.ndim() == 2 ? positions.shape(0) : -1;
+            if (n < 0 || positions.shape(1) != D)
+              throw py::value_error("positions: expected an array of shape (N, " +
+                                    std::to_string(D) + ")");
+            if (radii.ndim() != 1 || radii.shape(0) != n)
+              throw py::value_error("radii: expected one radius per position");
+            py::array_t<double, py::array::c_style | py::array::forcecast> vel;
+            if (!velocities.is_none()) {
+              vel =
+                  velocities.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+              if (vel.ndim() != 2 || vel.shape(0) != n || vel.shape(1) != D)
+                throw py::value_error("velocities: expected the shape of positions");
+            }
+            std::uint16_t mat = 0;
+            if (!material.empty()) {
+              bool found = false;
+              for (std::size_t k = 0; k < w.materials.size(); ++k)
+                if (w.materials[k].name == material)
+                  mat = static_cast<std::uint16_t>(k), found = true;
+              if (!found) throw py::key_error("no material '" + material + "'");
+            }
+            for (py::ssize_t i = 0; i < n; ++i) {
+              const double r = radii.data()[i];
+              if (!(r > 0.0)) throw py::value_error("radii must be positive");
+              Vec x, v = Vec::Zero();
+              for (int k = 0; k < D; ++k) {
+                x[k] = positions.data()[i * D + k];
+                if (!velocities.is_none()) v[k] = vel.data()[i * D + k];
+              }
+              w.particles.add(x, r, w.materials[mat].density, mat, v);
+            }
+            if (!w.nlist.start.empty()) {  // the new grains start with empty rows
+              for (auto* start : {&w.nlist.start, &w.nlist.wall_start, &w.nlist.spar_start})
+                if (!start->empty()) start->resize(w.particles.size() + 1, start->back());
+            }
+            w.rebuild_needed = true;
+            update_timestep(w);
+            return n;
+          },
+          py::arg("positions"), py::arg("radii"), py::arg("velocities") = py::none(),
+          py::arg("material") = "",
+          "Adds grains at the given positions (N, D) with radii (N) and optional velocities, "
+          "of a material of the scenario (default: the first). They are placed as given. "
+          "Returns how many were added.")
+      .def(
+          "fabric",
+          [](S& s) {
+            const auto f = fabric_tensor(s.world());
+            py::array_t<double> t({py::ssize_t{D}, py::ssize_t{D}});
+            for (int a = 0; a < D; ++a)
+              for (int b = 0; b < D; ++b) t.mutable_data()[a * D + b] = f(a, b);
+            py::dict out;
+            out["tensor"] = t;
+            out["anisotropy"] = fabric_anisotropy<D>(f);
+            return out;
+          },
+          "The fabric tensor <n n> of the grain-grain contacts (trace 1) and its anisotropy "
+          "D (largest - smallest eigenvalue).")
+      .def("write_vtk", &S::write_vtk, py::arg("folder"), py::arg("contacts") = true,
+           "Appends a frame to the VTK series in folder/vtk (grains, walls, chains, and the "
+           "contact network as lines); returns the .pvd index's path.")
+      .def("save", &S::save, py::arg("path"),
+           "Writes a checkpoint file of the scene: geodem.load(path) gives it back, bit for "
+           "bit.");
 }
 
 }  // namespace

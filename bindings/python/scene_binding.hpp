@@ -5,8 +5,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <memory>
 #include <string>
 
+#include "io/run_output.hpp"
 #include "scene/scene_settings.hpp"
 #include "world/world.hpp"
 
@@ -31,9 +33,19 @@ class Scene {
   const SceneSettings& settings() const { return settings_; }
   std::size_t wall_index(const std::string& name) const;
 
+  // Appends a frame (grains, walls, chains and, with `contacts`, the contact network) to the
+  // VTK series of `folder` (its .pvd index is rewritten); returns the index's path.
+  std::string write_vtk(const std::string& folder, bool contacts);
+  // A checkpoint file of the scene (its settings and its whole state, walls included).
+  void save(const std::string& path) const;
+  // The state of a checkpoint written by save() (or by a scene run of the command line).
+  void load_state(const std::string& world_archive);
+
  private:
   SceneSettings settings_;
   World<D> world_;
+  std::string vtk_folder_;
+  std::shared_ptr<VtkSeries<D>> vtk_;
 };
 
 // Registers the Scene2D and Scene3D classes.

@@ -30,7 +30,7 @@ void same_name(Archive& a, const std::string& name, const char* what) {
 // One list of fields for both directions. W is World<D> or const World<D>; the writer's
 // operator() takes const references, so the const_cast below never writes.
 template <class Archive, int D>
-void visit(Archive& a, World<D>& w) {
+void visit(Archive& a, World<D>& w, bool adopt_walls = false) {
   auto& P = w.particles;
   a(P.pos), a(P.vel), a(P.angvel), a(P.force), a(P.torque), a(P.radius), a(P.inv_mass);
   a(P.inv_inertia), a(P.material), a(P.flags), a(P.pos_at_build), a(P.orient), a(P.id);
@@ -41,9 +41,23 @@ void visit(Archive& a, World<D>& w) {
   a(C.torque), a(C.inv_mass), a(C.inertia), a(C.inv_inertia), a(C.volume), a(C.id);
   a(C.next_id), a(C.held);
 
-  same_count(a, w.walls.size(), "walls");
+  if constexpr (Archive::kLoading) {
+    if (adopt_walls) {
+      std::uint64_t n = 0;
+      a(n);
+      if (n > (1u << 24)) throw CheckpointError("implausible wall count");
+      w.walls.resize(n);
+    } else {
+      same_count(a, w.walls.size(), "walls");
+    }
+  } else {
+    same_count(a, w.walls.size(), "walls");
+  }
   for (auto& wall : w.walls) {
-    same_name(a, wall.name, "wall");
+    if (adopt_walls)
+      a(wall.name);
+    else
+      same_name(a, wall.name, "wall");
     a(wall.kind), a(wall.point), a(wall.normal), a(wall.end), a(wall.velocity);
     a(wall.material), a(wall.owns_end_vertex), a(wall.area), a(wall.force), a(wall.stiffness);
     a(wall.displacement);
@@ -74,6 +88,7 @@ void visit(Archive& a, World<D>& w) {
   a(w.time), a(w.step), a(w.rebuild_needed), a(w.disp_bound), a(w.radius_growth);
   a(w.overlap_limit), a(w.contact_extras), a(w.broken_bonds), a(w.measure_this_step);
   a(w.stats), a(w.stage_seconds);
+  if (adopt_walls) return;
   same_count(a, w.controllers.size(), "controllers");
   for (auto& c : w.controllers) {
     if constexpr (Archive::kLoading)
@@ -139,6 +154,15 @@ void load_world_state(StateReader& in, World<D>& world) {
   world.slab_crossing.release();
 }
 
+template <int D>
+void load_world_state_with_walls(StateReader& in, World<D>& world) {
+  visit(in, world, true);
+  check_sizes(world);
+  world.slab_crossing.release();
+}
+
+template void load_world_state_with_walls<2>(StateReader&, World<2>&);
+template void load_world_state_with_walls<3>(StateReader&, World<3>&);
 template void save_world_state<2>(StateWriter&, const World<2>&);
 template void save_world_state<3>(StateWriter&, const World<3>&);
 template void load_world_state<2>(StateReader&, World<2>&);

@@ -17,4 +17,10 @@ void save_world_state(StateWriter& out, const World<D>& world);
 template <int D>
 void load_world_state(StateReader& in, World<D>& world);
 
+// The same for a world whose walls may have changed since it was built (walls added or
+// removed between steps, as a script does): the saved walls replace the world's, and the
+// controllers' states are not read (the world's controllers are left as they are).
+template <int D>
+void load_world_state_with_walls(StateReader& in, World<D>& world);
+
 }  // namespace geodem
