@@ -8,7 +8,8 @@
 # READMEs quote with the committed ones (examples/NAME/expected/numbers.json: a difference is
 # printed, and means the README's table must be updated too), then writes the new figures
 # and plots into expected/. With --all, also the pull-out, interface shear and study
-# examples' own refresh scripts (about an hour). Exit 1 when a figure changed.
+# examples' own refresh scripts, the Python examples and the staged scene's seeds (about an
+# hour); their READMEs' tables are then updated by hand from what they print. Exit 1 when a figure changed.
 # CTest's examples.quick runs deposit2d and deposit3d and compares their figures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -39,6 +40,17 @@ if ((all)); then
   done
   cp "$OUT/python/seed1/oedometer.png" examples/python/expected/
   cp "$OUT/python/seed1/oedometer.json" examples/python/expected/oedometer_seed1.json
+  # The triaxial tutorial (seeds 1-3 in the README; seed 1's in expected/) and the sweep.
+  for seed in 1 2 3; do
+    PYTHONPATH=build/python python3 examples/python/triaxial_tutorial.py "$OUT/python/triax$seed" "$seed"
+  done
+  cp "$OUT/python/triax1/triaxial.png" examples/python/expected/triaxial_tutorial.png
+  python3 -c "import json,sys; json.dump(json.load(open(sys.argv[1]))['results'], open(sys.argv[2], 'w'), indent=1)" \
+    "$OUT/python/triax1/triaxial.json" examples/python/expected/triaxial_tutorial_seed1.json
+  PYTHONPATH=build/python python3 examples/python/friction_sweep.py "$OUT/python/sweep"
+  cp "$OUT/python/sweep/friction_sweep.png" "$OUT/python/sweep/sweep.json" examples/python/expected/
+  # The staged scene's seed table.
+  python3 examples/staged2d/seeds.py build/geodem "$OUT/staged2d_seeds"
 fi
 if ((changed)); then
   echo "figures changed: update the examples' READMEs (and docs quoting them) from expected/numbers.json"

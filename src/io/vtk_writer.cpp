@@ -53,6 +53,18 @@ std::string finish(const std::string& type, const std::string& body, const Appen
   return s;
 }
 
+// Closes a PolyData piece of lines: its points and connectivity, then writes the file.
+void finish_lines(const std::string& path, std::ostringstream& body, AppendedData& data,
+                  const std::vector<double>& pts, const std::vector<std::int64_t>& conn,
+                  const std::vector<std::int64_t>& offs) {
+  data.add("Points", "Float64", 3, pts.data(), pts.size() * sizeof(double));
+  body << "<Points>\n" << data.take_xml() << "</Points>\n";
+  data.add("connectivity", "Int64", 1, conn.data(), conn.size() * 8);
+  data.add("offsets", "Int64", 1, offs.data(), offs.size() * 8);
+  body << "<Lines>\n" << data.take_xml() << "</Lines>\n</Piece>\n</PolyData>\n";
+  write_file_atomic(path, finish("PolyData", body.str(), data));
+}
+
 }  // namespace
 
 template <int D>
@@ -187,12 +199,7 @@ void write_spars_vtp(const std::string& path, const World<D>& world) {
   data.add("stiffness_J", "Float64", 1, stiffness.data(), stiffness.size() * sizeof(double));
   data.add("chain", "Int64", 1, chain.data(), chain.size() * 8);
   body << "<CellData Scalars=\"tension\">\n" << data.take_xml() << "</CellData>\n";
-  data.add("Points", "Float64", 3, pts.data(), pts.size() * sizeof(double));
-  body << "<Points>\n" << data.take_xml() << "</Points>\n";
-  data.add("connectivity", "Int64", 1, conn.data(), conn.size() * 8);
-  data.add("offsets", "Int64", 1, offs.data(), offs.size() * 8);
-  body << "<Lines>\n" << data.take_xml() << "</Lines>\n</Piece>\n</PolyData>\n";
-  write_file_atomic(path, finish("PolyData", body.str(), data));
+  finish_lines(path, body, data, pts, conn, offs);
 }
 
 template <int D>
@@ -226,12 +233,7 @@ void write_contacts_vtp(const std::string& path, const World<D>& world) {
   data.add("overlap", "Float64", 1, c.overlap.data(), c.overlap.size() * sizeof(double));
   data.add("bonded", "Int64", 1, bonded.data(), bonded.size() * 8);
   body << "<CellData Scalars=\"force\" Vectors=\"normal\">\n" << data.take_xml() << "</CellData>\n";
-  data.add("Points", "Float64", 3, pts.data(), pts.size() * sizeof(double));
-  body << "<Points>\n" << data.take_xml() << "</Points>\n";
-  data.add("connectivity", "Int64", 1, conn.data(), conn.size() * 8);
-  data.add("offsets", "Int64", 1, offs.data(), offs.size() * 8);
-  body << "<Lines>\n" << data.take_xml() << "</Lines>\n</Piece>\n</PolyData>\n";
-  write_file_atomic(path, finish("PolyData", body.str(), data));
+  finish_lines(path, body, data, pts, conn, offs);
 }
 
 void PvdIndex::add(double time, const std::string& file, int part) {

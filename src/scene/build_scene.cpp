@@ -19,13 +19,6 @@ namespace geodem {
 
 namespace {
 
-template <int D>
-typename Dim<D>::Vec to_vec(const List& v) {
-  typename Dim<D>::Vec x;
-  for (int k = 0; k < D; ++k) x[k] = v[static_cast<std::size_t>(k)];
-  return x;
-}
-
 std::uint16_t material_index(const std::vector<Material>& mats, const std::string& name) {
   for (std::size_t i = 0; i < mats.size(); ++i)
     if (mats[i].name == name) return static_cast<std::uint16_t>(i);

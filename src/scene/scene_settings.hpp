@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "base/dim.hpp"
 #include "clumps/grain_mix.hpp"
 #include "io/checkpoint.hpp"
 #include "io/toml_reader.hpp"
@@ -17,6 +18,14 @@
 namespace geodem {
 
 using List = std::vector<double>;
+
+// A list of the scenario's dimension as the engine's vector (the readers checked its size).
+template <int D>
+typename Dim<D>::Vec to_vec(const List& v) {
+  typename Dim<D>::Vec x;
+  for (int k = 0; k < D; ++k) x[k] = v[static_cast<std::size_t>(k)];
+  return x;
+}
 
 struct PairSpec {
   std::string a, b;

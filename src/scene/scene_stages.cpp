@@ -24,13 +24,6 @@ std::vector<std::size_t> wall_indices(const World<D>& w, const std::string& name
 namespace {
 
 template <int D>
-typename Dim<D>::Vec to_vec(const List& v) {
-  typename Dim<D>::Vec x;
-  for (int k = 0; k < D; ++k) x[k] = v[static_cast<std::size_t>(k)];
-  return x;
-}
-
-template <int D>
 std::vector<std::size_t> existing_walls(const World<D>& w, const std::string& name) {
   auto out = wall_indices(w, name);
   if (out.empty()) throw std::logic_error("no wall " + name);  // checked when reading
