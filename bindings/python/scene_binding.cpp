@@ -14,6 +14,7 @@
 #include "measure/contact_network.hpp"
 #include "measure/measurements.hpp"
 #include "scene/build_scene.hpp"
+#include "scene/scene_start.hpp"
 #include "world/step.hpp"
 #include "world/world_editing.hpp"
 #include "world/world_state.hpp"
@@ -23,6 +24,7 @@ namespace geodem::python {
 template <int D>
 Scene<D>::Scene(SceneSettings settings) : settings_(std::move(settings)) {
   build_world<D>(settings_, world_);
+  if (!settings_.start_checkpoint.empty()) start_from_checkpoint(settings_, world_);
   world_.particles.stable_buffers = true;  // the numpy views stay valid across steps
   if (settings_.bonds_initial) create_bonds(world_, settings_.bond_gap_tolerance);
   update_timestep(world_);  // as the command line's scene runner does before its first step

@@ -17,6 +17,7 @@
 #include "measure/measurements.hpp"
 #include "scene/build_scene.hpp"
 #include "scene/scene_stages.hpp"
+#include "scene/scene_start.hpp"
 #include "world/step.hpp"
 #include "world/world_state.hpp"
 
@@ -45,6 +46,8 @@ template <int D>
 nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   World<D> w;
   build_world<D>(s, w);
+  // (also on resume: the rebuilt world must have the walls and chains the run had)
+  if (!s.start_checkpoint.empty()) start_from_checkpoint(s, w);
   w.threads = opt.threads;
   prepare_output_dir(opt.out_dir);
 

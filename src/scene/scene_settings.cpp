@@ -288,8 +288,29 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     s.particle_files.push_back(f);
     t.finish();
   }
-  if (s.particles.empty() && s.clouds.empty() && s.particle_files.empty() && s.clumps.empty())
-    r.fail("particles", "the scene has no grains: add [[particles]], [[clumps]] or [[clouds]]");
+  if (auto t = r.table("start")) {
+    const std::string name = t->string("checkpoint", "");
+    if (name.empty())
+      t->fail("checkpoint", "missing; expected a checkpoint file or the folder of a scene run");
+    const std::filesystem::path p(name);
+    s.start_checkpoint =
+        p.is_absolute() ? name : (std::filesystem::path(file).parent_path() / p).string();
+    std::error_code ec;
+    if (!std::filesystem::exists(s.start_checkpoint, ec))
+      t->fail("checkpoint", "not found: " + s.start_checkpoint);
+    if (!s.particles.empty() || !s.clouds.empty() || !s.particle_files.empty() ||
+        !s.clumps.empty() || !s.chains.empty())
+      t->fail("checkpoint",
+              "a scene that starts from a checkpoint takes its grains and chains from it: add "
+              "grains in a stage ([[stages.clouds]]) instead of [[particles]], [[clumps]], "
+              "[[clouds]], [[particle_files]] or [[chains]]");
+    t->finish();
+  } else if (s.particles.empty() && s.clouds.empty() && s.particle_files.empty() &&
+             s.clumps.empty()) {
+    r.fail("particles",
+           "the scene has no grains: add [[particles]], [[clumps]] or [[clouds]], or start "
+           "from another run's checkpoint ([start] checkpoint)");
+  }
 
   if (staged) s.stages = read_stages(r, parts, s);
 

@@ -169,6 +169,9 @@ struct SceneSettings {
   std::vector<CloudSpec> clouds;
   std::vector<ParticleFileSpec> particle_files;
   std::vector<StageSpec> stages;  // empty: one stage given by [time] and [stop]
+  // [start] checkpoint: grains, walls, chains and contacts of another scene run's checkpoint
+  // (a file, or a run folder: its newest valid checkpoint); empty: none.
+  std::string start_checkpoint;
   OutputSpec output;
   CheckpointSpec checkpoint;
   nlohmann::json resolved;  // every setting with its value, defaults included

@@ -67,9 +67,19 @@ void visit(Archive& a, World<D>& w, bool adopt_walls = false) {
   a(S.pos), a(S.vel), a(S.force), a(S.mass), a(S.inertial_mass), a(S.flags), a(S.pos_at_build);
   a(S.node_a), a(S.node_b), a(S.prev), a(S.next), a(S.rest_length), a(S.stiffness);
   a(S.half_thickness), a(S.material), a(S.chain_of), a(S.rest_turn), a(S.tension);
-  same_count(a, S.chains.size(), "spar chains");
+  if (Archive::kLoading && adopt_walls) {
+    std::uint64_t n = 0;
+    a(n);
+    if (n > (1u << 24)) throw CheckpointError("implausible chain count");
+    S.chains.resize(n);
+  } else {
+    same_count(a, S.chains.size(), "spar chains");
+  }
   for (auto& c : S.chains) {
-    same_name(a, c.name, "chain");
+    if (adopt_walls)
+      a(c.name);
+    else
+      same_name(a, c.name, "chain");
     a(c.first_node), a(c.node_count), a(c.first_element), a(c.bending);
   }
 

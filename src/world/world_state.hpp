@@ -17,9 +17,10 @@ void save_world_state(StateWriter& out, const World<D>& world);
 template <int D>
 void load_world_state(StateReader& in, World<D>& world);
 
-// The same for a world whose walls may have changed since it was built (walls added or
-// removed between steps, as a script does): the saved walls replace the world's, and the
-// controllers' states are not read (the world's controllers are left as they are).
+// The same for a world whose walls or chains may differ from the saved one (walls added or
+// removed between steps, as a script does; a scene that starts from another run's state):
+// the saved walls and chains replace the world's, and the controllers' states are not read
+// (the world's controllers are left as they are). Materials must still match by name.
 template <int D>
 void load_world_state_with_walls(StateReader& in, World<D>& world);
 

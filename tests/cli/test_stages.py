@@ -195,6 +195,53 @@ plots = false
         self.assertAlmostEqual(fab["anisotropy"], 2 * 2 * dev, places=12)
         self.assertAlmostEqual(lam, 0.5, places=12)
 
+    def test_a_scene_starts_from_another_runs_checkpoint(self):
+        # Run A settles and drops the deposit; run B starts from A's last checkpoint and
+        # excavates and loads it (the second half of the staged example).
+        head, rest = SMALL_STAGED.split('[[stages]]\nname = "excavate"')
+        tail = rest[rest.index("[output]"):]
+        a_text = head + tail + "\n[checkpoint]\nevery_steps = 1000000\n"
+        a, res_a = self.run_scene(a_text, "a")
+        materials = SMALL_STAGED[SMALL_STAGED.index("[[materials]]"):
+                                 SMALL_STAGED.index("[[walls]]")]
+        b_text = ('kind = "scene"\ndimension = 2\n[time]\nstep = "auto"\nsafety = 0.5\n'
+                  "[physics]\nlocal_damping = 0.3\ngravity = [0.0, -9.81]\n" + materials +
+                  f'[start]\ncheckpoint = "{a}"\n' + '[[stages]]\nname = "restart"\nsteps = 1\n'
+                  + '[[stages]]\nname = "excavate"' + rest +
+                  "\n[checkpoint]\nevery_steps = 400\nkeep = 1000\n")
+        b, res_b = self.run_scene(b_text, "b")
+        self.assertEqual([s["name"] for s in res_b["stages"]], ["restart", "excavate", "load"])
+        servo = res_b["stages"][2]["servos"][0]
+        self.assertLess(abs(servo["stress"] / 10e3 - 1.0), 0.01, servo)
+        # B's first record (one step of a stage that changes nothing) is A's end state: the
+        # same grains and contacts.
+        first = history(b)[0]
+        last_a = history(a)[-1]
+        self.assertEqual(first["contacts"], last_a["contacts"])
+        self.assertEqual(sorted(res_b["walls"]), ["floor", "left", "plate", "right"])
+        self.assertLess(res_b["particles"], res_a["particles"])
+        self.assertEqual(float(first["time"]), float(first["dt"]))  # time starts at zero
+        # B resumes bit for bit from a checkpoint in its servo stage (A's file is read again).
+        expected = comparable(b)
+        checkpoints = sorted((b / "checkpoint").glob("checkpoint_*.bin"))
+        cp = checkpoints[len(checkpoints) * 3 // 4]
+        out = self.dir / "b_resumed"
+        shutil.copytree(b, out)
+        for later in (out / "checkpoint").glob("checkpoint_*.bin"):
+            if later.name > cp.name:
+                later.unlink()
+        r = run("run", str(self.dir / "b.toml"), "--resume", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(comparable(out), expected)
+        # A checkpoint that does not fit is an input error naming [start].
+        bad = b_text.replace('name = "sand"', 'name = "clay"')
+        p = self.dir / "bad.toml"
+        p.write_text(bad.replace("[[stages.add_walls]]", "[[stages.add_walls]]\nmaterial = \"clay\""))
+        r = run("run", str(p), "--out", str(self.dir / "bad"), "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("start.checkpoint", r.stderr)
+        self.assertIn("material", r.stderr)
+
     def test_bad_stages_name_the_key(self):
         cases = [
             (SMALL_STAGED.replace('remove_walls = ["gate"]', 'remove_walls = ["door"]'),
