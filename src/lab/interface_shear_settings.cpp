@@ -51,6 +51,7 @@ InterfaceShearSettings read_interface_shear(const toml::table& root, const std::
   read_deposit_time(r, s);
   if (auto o = r.table("output")) {
     s.vtk = o->boolean("vtk", true);
+    s.vtk_contacts = o->boolean("vtk_contacts", false);
     s.plots = o->boolean("plots", true);
     o->finish();
   }

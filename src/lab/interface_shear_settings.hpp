@@ -36,6 +36,7 @@ struct InterfaceShearSettings : DepositedSoil, SheetSettings, DepositTime {
   // [time]: DepositTime
   // [output]
   bool vtk = true, plots = true;
+  bool vtk_contacts = false;  // the contact network (force chains) in each VTK frame
   nlohmann::json resolved;
 };
 

@@ -101,6 +101,7 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
   read_deposit_time(r, s);
   if (auto o = r.table("output")) {
     s.vtk = o->boolean("vtk", true);
+    s.vtk_contacts = o->boolean("vtk_contacts", false);
     s.plots = o->boolean("plots", true);
     s.columns = static_cast<int>(o->integer("columns", 24, 1, 10000));
     o->finish();

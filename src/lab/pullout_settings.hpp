@@ -68,6 +68,7 @@ struct PulloutSettings : DepositedSoil, SheetSettings, DepositTime {
   // [time]: DepositTime
   // [output]
   bool vtk = true, plots = true;
+  bool vtk_contacts = false;  // the contact network (force chains) in each VTK frame
   CheckpointSpec checkpoint;  // [checkpoint]
   int columns = 24;           // colour bands across the box
   nlohmann::json resolved;

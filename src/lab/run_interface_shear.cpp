@@ -69,7 +69,9 @@ struct InterfaceShear {
         opt(options),
         rng(settings.seed),
         progress(options.quiet),
-        vtk(options.out_dir) {}
+        vtk(options.out_dir) {
+    vtk.with_contacts(s.vtk_contacts);
+  }
 
   bool soil_base() const { return s.base == "soil"; }
   // Height of the sheet's axis; the soil above it loads it.

@@ -98,6 +98,7 @@ struct Pullout {
         deposit_cache(settings.deposit_cache, "pullout_foundation", settings.resolved,
                       {"anchor", "sheet", "surcharge", "pull", "analytic", "output", "refinement",
                        "checkpoint", "seeds", "title"}) {
+    vtk.with_contacts(s.vtk_contacts);
     checkpoints.outputs({&prep_csv, &history, &profiles});
   }
 

@@ -78,6 +78,7 @@ struct Lab {
         vtk(options.out_dir),
         checkpoints("triaxial", D, settings.resolved, options.out_dir, settings.checkpoint) {
     checkpoints.outputs({&prep_csv, &history});
+    vtk.with_contacts(s.vtk_contacts);
   }
 
   double elapsed() const { return checkpoints.elapsed(); }

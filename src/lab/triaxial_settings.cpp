@@ -130,6 +130,7 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
 
   if (auto o = r.table("output")) {
     s.vtk = o->boolean("vtk", true);
+    s.vtk_contacts = o->boolean("vtk_contacts", false);
     s.plots = o->boolean("plots", true);
     o->finish();
   }

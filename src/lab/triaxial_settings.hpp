@@ -55,6 +55,7 @@ struct TriaxialSettings {
   std::vector<double> vtk_at_strains;
   // [output]
   bool vtk = true, plots = true;
+  bool vtk_contacts = false;  // the contact network (force chains) in each VTK frame
   CheckpointSpec checkpoint;  // [checkpoint]
   nlohmann::json resolved;
 };

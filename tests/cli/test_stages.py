@@ -16,7 +16,7 @@ import unittest
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from small_scenarios import SMALL_STAGED
+from small_scenarios import LAB_CHECKPOINT_TRIAXIAL, SMALL_STAGED
 
 GEODEM = None
 
@@ -241,6 +241,21 @@ plots = false
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertIn("start.checkpoint", r.stderr)
         self.assertIn("material", r.stderr)
+
+    def test_lab_kinds_write_force_chains_too(self):
+        text = LAB_CHECKPOINT_TRIAXIAL.replace("[output]\n", "[output]\nvtk_contacts = true\n")
+        out, _ = self.run_scene(text, "triaxial")
+        frames = sorted((out / "vtk").glob("contacts_*.vtp"))
+        particles = sorted((out / "vtk").glob("particles_*.vtu"))
+        self.assertEqual(len(frames), len(particles))
+        self.assertGreater(len(frames), 1)
+        pvd = (out / "vtk" / "particles.pvd").read_text()
+        root, a = read_vtk(frames[-1])
+        lines = int(root.find("PolyData/Piece").get("NumberOfLines"))
+        self.assertGreater(lines, 50)
+        self.assertEqual(len(a["force"]), lines)
+        for f in frames:
+            self.assertIn(f.name, pvd)
 
     def test_bad_stages_name_the_key(self):
         cases = [
