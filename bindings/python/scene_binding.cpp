@@ -12,6 +12,7 @@
 #include "contacts/bonds.hpp"
 #include "io/checkpoint.hpp"
 #include "measure/contact_network.hpp"
+#include "measure/displacement.hpp"
 #include "measure/measurements.hpp"
 #include "scene/build_scene.hpp"
 #include "scene/scene_start.hpp"
@@ -72,6 +73,7 @@ std::string Scene<D>::write_vtk(const std::string& folder, bool contacts) {
     vtk_folder_ = folder;
   }
   vtk_->with_contacts(contacts);
+  vtk_->with_reference(reference.empty() ? nullptr : &reference);
   vtk_->write(world_);
   return folder + "/vtk/particles.pvd";
 }
@@ -301,6 +303,25 @@ void bind(py::module_& m, const char* name) {
           },
           "The fabric tensor <n n> of the grain-grain contacts (trace 1) and its anisotropy "
           "D (largest - smallest eigenvalue).")
+      .def(
+          "set_reference", [](S& s) { s.reference = positions_by_id(s.world()); },
+          "Takes the grains' current positions as the reference of displacements().")
+      .def(
+          "displacements",
+          [](S& s) {
+            if (s.reference.empty())
+              throw py::value_error("no reference: call set_reference() first");
+            const auto& w = s.world();
+            py::array_t<double> a({static_cast<py::ssize_t>(w.particles.size()), py::ssize_t{D}});
+            double* out = a.mutable_data();
+            for (std::size_t i = 0; i < w.particles.size(); ++i) {
+              const Vec d = displacement(w, s.reference, i);
+              for (int k = 0; k < D; ++k) *out++ = d[k];
+            }
+            return a;
+          },
+          "Each grain's displacement since set_reference() (N, D), in the order of positions; "
+          "NaN for grains added since.")
       .def("write_vtk", &S::write_vtk, py::arg("folder"), py::arg("contacts") = true,
            "Appends a frame to the VTK series in folder/vtk (grains, walls, chains, and the "
            "contact network as lines); returns the .pvd index's path.")

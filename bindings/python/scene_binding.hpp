@@ -45,6 +45,12 @@ class Scene {
   SceneSettings settings_;
   World<D> world_;
   std::string vtk_folder_;
+
+ public:
+  // Positions by grain id at the moment set_reference() was called (empty: none).
+  std::vector<typename Dim<D>::Vec> reference;
+
+ private:
   std::shared_ptr<VtkSeries<D>> vtk_;
 };
 

@@ -90,7 +90,7 @@ template <int D>
 void VtkSeries<D>::write(const World<D>& world) {
   char name[64];
   std::snprintf(name, sizeof name, "particles_%06d.vtu", count_);
-  write_particles_vtu(dir_ + "/vtk/" + name, world);
+  write_particles_vtu(dir_ + "/vtk/" + name, world, reference_);
   pvd_.add(world.time, name, 0);
   if (!world.walls.empty()) {
     std::snprintf(name, sizeof name, "walls_%06d.vtp", count_);

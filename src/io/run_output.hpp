@@ -56,6 +56,10 @@ class VtkSeries {
   int count() const { return count_; }
   // Also write the contact network (force chains) of each frame.
   void with_contacts(bool on) { contacts_ = on; }
+  // Also each grain's displacement since `reference` (positions by id; not owned; null: none).
+  void with_reference(const std::vector<typename Dim<D>::Vec>* reference) {
+    reference_ = reference;
+  }
   // Checkpoints: the frames written so far. restore() also deletes the files of frames
   // written after the checkpoint and rewrites the index, so that a resumed run's series
   // is the one an uninterrupted run writes.
@@ -67,6 +71,7 @@ class VtkSeries {
   PvdIndex pvd_;
   int count_ = 0;
   bool contacts_ = false;
+  const std::vector<typename Dim<D>::Vec>* reference_ = nullptr;
 };
 
 // Runs the plotting script on a finished run's folder; returns false (with a

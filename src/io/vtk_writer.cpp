@@ -7,6 +7,7 @@
 
 #include "io/output_files.hpp"
 #include "measure/contact_network.hpp"
+#include "measure/displacement.hpp"
 
 namespace geodem {
 
@@ -68,7 +69,8 @@ void finish_lines(const std::string& path, std::ostringstream& body, AppendedDat
 }  // namespace
 
 template <int D>
-void write_particles_vtu(const std::string& path, const World<D>& world) {
+void write_particles_vtu(const std::string& path, const World<D>& world,
+                         const std::vector<typename Dim<D>::Vec>* reference) {
   const auto& P = world.particles;
   const std::size_t n = P.size();
   AppendedData data;
@@ -98,6 +100,14 @@ void write_particles_vtu(const std::string& path, const World<D>& world) {
   for (std::size_t i = 0; i < P.clump.size(); ++i)
     if (P.clump[i] != kNoClump) clump[i] = static_cast<std::int32_t>(world.clumps.id[P.clump[i]]);
   data.add("clump", "Int32", 1, clump.data(), n * sizeof(std::int32_t));
+  if (reference) {
+    std::vector<double> u(3 * n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto d = displacement(world, *reference, i);
+      for (int k = 0; k < D; ++k) u[3 * i + k] = d[k];
+    }
+    data.add("displacement", "Float64", 3, u.data(), u.size() * sizeof(double));
+  }
   body << "<PointData Scalars=\"radius\" Vectors=\"velocity\">\n"
        << data.take_xml() << "</PointData>\n";
   const auto x = as3<D>(P.pos);
@@ -250,8 +260,10 @@ void PvdIndex::write() const {
   write_file_atomic(path_, s.str());
 }
 
-template void write_particles_vtu<2>(const std::string&, const World<2>&);
-template void write_particles_vtu<3>(const std::string&, const World<3>&);
+template void write_particles_vtu<2>(const std::string&, const World<2>&,
+                                     const std::vector<Dim<2>::Vec>*);
+template void write_particles_vtu<3>(const std::string&, const World<3>&,
+                                     const std::vector<Dim<3>::Vec>*);
 template void write_walls_vtp<2>(const std::string&, const World<2>&, double);
 template void write_walls_vtp<3>(const std::string&, const World<3>&, double);
 template void write_spars_vtp<2>(const std::string&, const World<2>&);

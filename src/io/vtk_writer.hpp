@@ -10,8 +10,11 @@
 
 namespace geodem {
 
+// With `reference` (positions by grain id, measure/displacement.hpp), also each grain's
+// displacement since it (NaN for a grain added after it).
 template <int D>
-void write_particles_vtu(const std::string& path, const World<D>& world);
+void write_particles_vtu(const std::string& path, const World<D>& world,
+                         const std::vector<typename Dim<D>::Vec>* reference = nullptr);
 
 // Planes are drawn as squares (3D) or segments (2D) of the given half size, centred
 // on the grains' centroid projected onto the plane.

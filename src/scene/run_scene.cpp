@@ -14,6 +14,7 @@
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
 #include "measure/contact_network.hpp"
+#include "measure/displacement.hpp"
 #include "measure/measurements.hpp"
 #include "scene/build_scene.hpp"
 #include "scene/scene_stages.hpp"
@@ -65,6 +66,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   double stage_t0 = 0.0;
   std::uint64_t stage_s0 = 0;
   std::string stage_log = "[]";
+  // Positions by grain id at the start of the run or of the stage (the VTK displacements).
+  std::vector<typename Dim<D>::Vec> reference;
   RunCheckpoints checkpoints("scene", D, s.resolved, opt.out_dir, s.checkpoint);
   Checkpoint resumed;
   StateReader runner_in(nullptr, 0);
@@ -73,7 +76,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     resumed = checkpoints.resume(s.file, {"time.duration", "time.steps", "stop"});
     runner_in = StateReader(resumed.runner.data(), resumed.runner.size());
     runner_in(stage), runner_in(stage_started), runner_in(stage_t0), runner_in(stage_s0);
-    runner_in(stage_log);
+    runner_in(stage_log), runner_in(reference);
     // The saved world has the walls and servos of the stages begun: redo those first.
     for (std::uint64_t k = 0; staged && k < std::min(stage + stage_started, stage_count); ++k)
       start_stage(s, k, w, true);
@@ -133,6 +136,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   checkpoints.outputs({&history});
   VtkSeries<D> vtk(opt.out_dir);
   vtk.with_contacts(s.output.vtk_contacts);
+  const bool displacements = s.output.displacement_from != "none";
+  if (displacements) vtk.with_reference(&reference);
   if (opt.resume) {
     auto& in = runner_in;
     double wall_before = 0.0;  // wall time of the run before the checkpoint
@@ -151,6 +156,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   auto checkpoint = [&] {
     checkpoints.write_with(w.step, w.time, [&](StateWriter& runner, StateWriter& world) {
       runner(stage), runner(stage_started), runner(stage_t0), runner(stage_s0), runner(stage_log);
+      runner(reference);
       runner(bonds_created), runner(elapsed()), runner(finished), runner(stop_reason);
       vtk.save(runner);
       save_world_state(world, w);
@@ -225,6 +231,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   std::string status = "completed";
   std::string message;
   if (!opt.resume) {
+    if (displacements) reference = positions_by_id(w);
     update_timestep(w);
     if (s.output.vtk) vtk.write(w);
   }
@@ -243,6 +250,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     while (!at_rest && stage < stage_count) {
       if (!stage_started) {
         start_stage(s, stage, w, false);
+        if (s.output.displacement_from == "stage") reference = positions_by_id(w);
         update_timestep(w);
         stage_started = 1, stage_t0 = w.time, stage_s0 = w.step;
       }

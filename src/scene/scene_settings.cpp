@@ -320,6 +320,8 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     s.output.vtk_every = static_cast<std::uint64_t>(t->integer("vtk_every", 0, 0, (1LL << 50)));
     s.output.vtk = t->boolean("vtk", true);
     s.output.vtk_contacts = t->boolean("vtk_contacts", false);
+    s.output.displacement_from =
+        t->choice("displacement_from", "start", {"start", "stage", "none"});
     s.output.plots = t->boolean("plots", true);
     if (auto b = t->table("measure_box")) {
       s.output.measure_box = read_box(*b, s.dimension);

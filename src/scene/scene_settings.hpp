@@ -109,6 +109,9 @@ struct OutputSpec {
   std::uint64_t vtk_every = 0;  // 0: first and last state only
   bool vtk = true;
   bool vtk_contacts = false;  // force chains: the contact network in each VTK frame
+  // Grain displacements in the VTK frames: since the "start" of the run, since the start of
+  // each "stage", or "none".
+  std::string displacement_from = "start";
   bool plots = true;
   std::optional<std::pair<List, List>> measure_box;
 };

@@ -50,8 +50,9 @@ def read_vtk(path):
     for a in root.iter("DataArray"):
         offset = int(a.get("offset"))
         (size,) = struct.unpack_from("<Q", blob, offset)
-        fmt = "d" if a.get("type") == "Float64" else "q"
-        arrays[a.get("Name")] = list(struct.unpack_from(f"<{size // 8}{fmt}", blob, offset + 8))
+        fmt = {"Float64": "d", "Int64": "q", "UInt32": "I", "Int32": "i", "UInt8": "B"}[a.get("type")]
+        width = struct.calcsize(fmt)
+        arrays[a.get("Name")] = list(struct.unpack_from(f"<{size // width}{fmt}", blob, offset + 8))
     return root, arrays
 
 
@@ -186,6 +187,15 @@ plots = false
             # The tangential force lies in the contact's tangent plane.
             tn = sum(a["tangential_force"][3 * k + c] * a["normal"][3 * k + c] for c in range(3))
             self.assertLess(abs(tn), 1e-9 * (ft + 1e-30) + 1e-15)
+        # Displacements since the start in the grains' frames: the last frame's are the
+        # positions minus the first frame's, grain by grain (by id).
+        _, first = read_vtk(out / "vtk" / "particles_000000.vtu")
+        _, final = read_vtk(sorted((out / "vtk").glob("particles_*.vtu"))[-1])
+        start = {i: first["Points"][3 * k:3 * k + 3] for k, i in enumerate(first["id"])}
+        for k, i in enumerate(final["id"]):
+            for c in range(2):
+                self.assertEqual(final["displacement"][3 * k + c],
+                                 final["Points"][3 * k + c] - start[i][c])
         # The fabric columns: trace 1, and the summary's tensor is the last row's.
         self.assertAlmostEqual(float(last["fabric_xx"]) + float(last["fabric_yy"]), 1.0, places=12)
         fab = res["fabric"]

@@ -98,6 +98,19 @@ def test_fabric_and_force_chain_frames(tmp_path):
     assert (tmp_path / "frames" / "vtk" / "contacts_000001.vtp").stat().st_size > 1000
 
 
+def test_displacements_since_a_reference():
+    scene = geodem.scene(SCENE)
+    scene.step(100)
+    scene.set_reference()
+    start = dict(zip(scene.ids.tolist(), scene.positions.copy()))
+    scene.step(300)  # the grains are renumbered on the way
+    u = scene.displacements()
+    for k, i in enumerate(scene.ids.tolist()):
+        assert np.array_equal(u[k], scene.positions[k] - start[i])
+    scene.add_grains(np.array([[0.1, 0.35]]), np.array([0.004]))
+    assert np.all(np.isnan(scene.displacements()[-1]))
+
+
 def test_saved_and_loaded_scene_continues_bit_for_bit(tmp_path):
     scene = settled()
     scene.remove_wall("right")  # the saved state has its own wall list
