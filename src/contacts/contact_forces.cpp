@@ -249,8 +249,9 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
       t.wall_force[L.wall[k]] += f;
       t.wall_stiffness[L.wall[k]] +=
           law.law == LawKind::kLinear ? law.linear_kn(ri, ri) : 1.5 * fn / delta;
-      t.wall_dashpot[L.wall[k]] +=
-          normal_dashpot(law, ri, wall_partner_radius(law, ri), inv_m, delta);
+      if (world.tally_wall_dashpots)
+        t.wall_dashpot[L.wall[k]] +=
+            normal_dashpot(law, ri, wall_partner_radius(law, ri), inv_m, delta);
       if constexpr (Measure) {
         t.stats.fabric_stress += (a * nrm) * f.transpose();
         t.stats.sum_force += f.norm();

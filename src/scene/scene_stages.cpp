@@ -40,6 +40,7 @@ void start_stage(const SceneSettings& s, std::size_t k, World<D>& w, bool replay
       if (m.servo)
         for (auto i : wall_indices(w, m.wall)) w.walls[i].velocity.setZero();
   w.controllers.clear();
+  w.tally_wall_dashpots = false;
   for (const auto& name : st.remove_walls) {
     auto idx = existing_walls(w, name);
     for (auto it = idx.rbegin(); it != idx.rend(); ++it) remove_wall(w, *it);
@@ -79,6 +80,7 @@ void start_stage(const SceneSettings& s, std::size_t k, World<D>& w, bool replay
         continue;
       }
       w.walls[i].velocity.setZero();
+      w.tally_wall_dashpots = true;  // the servo counts its contacts' dashpots
       w.controllers.push_back(
           std::make_shared<PlateServo<D>>(i, m.stress, m.max_speed, m.gain, m.integral_gain, true));
     }

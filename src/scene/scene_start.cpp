@@ -44,14 +44,14 @@ void start_from_checkpoint(const SceneSettings& s, World<D>& w) {
   // What the scenario sets, kept across the load (which brings the saved run's values).
   const std::vector<Wall<D>> own_walls = w.walls;
   const std::vector<PairLaw> pair_laws = w.pair_laws;
-  const World<D> settings_of = [&] {
-    World<D> copy;
-    copy.gravity = w.gravity, copy.local_damping = w.local_damping, copy.dt = w.dt;
-    copy.auto_dt = w.auto_dt, copy.dt_safety = w.dt_safety;
-    copy.dt_update_interval = w.dt_update_interval, copy.skin_factor = w.skin_factor;
-    copy.sort_interval = w.sort_interval, copy.overlap_limit = w.overlap_limit;
-    return copy;
-  }();
+  auto copy_settings = [](const World<D>& from, World<D>& to) {
+    to.gravity = from.gravity, to.local_damping = from.local_damping, to.dt = from.dt;
+    to.auto_dt = from.auto_dt, to.dt_safety = from.dt_safety;
+    to.dt_update_interval = from.dt_update_interval, to.skin_factor = from.skin_factor;
+    to.sort_interval = from.sort_interval, to.overlap_limit = from.overlap_limit;
+  };
+  World<D> settings;
+  copy_settings(w, settings);
   try {
     StateReader in(c.world.data(), c.world.size());
     load_world_state_with_walls(in, w);
@@ -59,10 +59,7 @@ void start_from_checkpoint(const SceneSettings& s, World<D>& w) {
     fail(std::string("does not fit this scene: ") + e.what() +
          " (the scene's [[materials]] must be the run's, by name and in order)");
   }
-  w.gravity = settings_of.gravity, w.local_damping = settings_of.local_damping;
-  w.dt = settings_of.dt, w.auto_dt = settings_of.auto_dt, w.dt_safety = settings_of.dt_safety;
-  w.dt_update_interval = settings_of.dt_update_interval, w.skin_factor = settings_of.skin_factor;
-  w.sort_interval = settings_of.sort_interval, w.overlap_limit = settings_of.overlap_limit;
+  copy_settings(settings, w);
   w.time = 0.0, w.step = 0;
   w.controllers.clear();
   w.pair_laws = pair_laws;

@@ -30,9 +30,10 @@ struct Wall {
   double area = 0.0;  // for the stress on the wall (m^2 in 3D, m in 2D); 0: unknown
 
   // Results of the current step.
-  Vec force = Vec::Zero();         // force exerted by the grains on the wall
-  double stiffness = 0.0;          // sum of its contacts' normal stiffnesses (for servo control)
-  double dashpot = 0.0;            // sum of their normal dashpot coefficients (N s/m)
+  Vec force = Vec::Zero();  // force exerted by the grains on the wall
+  double stiffness = 0.0;   // sum of its contacts' normal stiffnesses (for servo control)
+  double dashpot =
+      0.0;  // sum of their normal dashpot coefficients (N s/m; World::tally_wall_dashpots)
   Vec displacement = Vec::Zero();  // since the neighbour list was built
 
   double normal_stress() const { return area > 0.0 ? -force.dot(normal) / area : 0.0; }

@@ -133,6 +133,9 @@ struct World {
   std::uint64_t broken_bonds = 0;  // bonds broken since the start
 
   bool measure_this_step = false;
+  // Sum each wall's contact dashpots (Wall::dashpot) in the force stage: only a servo that
+  // counts them asks (a square root per wall contact otherwise spared).
+  bool tally_wall_dashpots = false;
   ContactStats<D> stats;
   std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};
 

@@ -27,6 +27,26 @@ void same_name(Archive& a, const std::string& name, const char* what) {
                           "' in the scenario");
 }
 
+// The saved count of a list: adopted (the list resized to it) or checked against the list's.
+template <class Archive, class List>
+void count_of(Archive& a, List& list, const char* what, bool adopt) {
+  if (Archive::kLoading && adopt) {
+    std::uint64_t n = 0;
+    a(n);
+    if (n > (1u << 24)) throw CheckpointError(std::string("implausible count of ") + what);
+    list.resize(n);
+  } else {
+    same_count(a, list.size(), what);
+  }
+}
+template <class Archive>
+void name_of(Archive& a, std::string& name, const char* what, bool adopt) {
+  if (adopt)
+    a(name);
+  else
+    same_name(a, name, what);
+}
+
 // One list of fields for both directions. W is World<D> or const World<D>; the writer's
 // operator() takes const references, so the const_cast below never writes.
 template <class Archive, int D>
@@ -41,23 +61,9 @@ void visit(Archive& a, World<D>& w, bool adopt_walls = false) {
   a(C.torque), a(C.inv_mass), a(C.inertia), a(C.inv_inertia), a(C.volume), a(C.id);
   a(C.next_id), a(C.held);
 
-  if constexpr (Archive::kLoading) {
-    if (adopt_walls) {
-      std::uint64_t n = 0;
-      a(n);
-      if (n > (1u << 24)) throw CheckpointError("implausible wall count");
-      w.walls.resize(n);
-    } else {
-      same_count(a, w.walls.size(), "walls");
-    }
-  } else {
-    same_count(a, w.walls.size(), "walls");
-  }
+  count_of(a, w.walls, "walls", adopt_walls);
   for (auto& wall : w.walls) {
-    if (adopt_walls)
-      a(wall.name);
-    else
-      same_name(a, wall.name, "wall");
+    name_of(a, wall.name, "wall", adopt_walls);
     a(wall.kind), a(wall.point), a(wall.normal), a(wall.end), a(wall.velocity);
     a(wall.material), a(wall.owns_end_vertex), a(wall.area), a(wall.force), a(wall.stiffness);
     a(wall.displacement);
@@ -67,19 +73,9 @@ void visit(Archive& a, World<D>& w, bool adopt_walls = false) {
   a(S.pos), a(S.vel), a(S.force), a(S.mass), a(S.inertial_mass), a(S.flags), a(S.pos_at_build);
   a(S.node_a), a(S.node_b), a(S.prev), a(S.next), a(S.rest_length), a(S.stiffness);
   a(S.half_thickness), a(S.material), a(S.chain_of), a(S.rest_turn), a(S.tension);
-  if (Archive::kLoading && adopt_walls) {
-    std::uint64_t n = 0;
-    a(n);
-    if (n > (1u << 24)) throw CheckpointError("implausible chain count");
-    S.chains.resize(n);
-  } else {
-    same_count(a, S.chains.size(), "spar chains");
-  }
+  count_of(a, S.chains, "spar chains", adopt_walls);
   for (auto& c : S.chains) {
-    if (adopt_walls)
-      a(c.name);
-    else
-      same_name(a, c.name, "chain");
+    name_of(a, c.name, "chain", adopt_walls);
     a(c.first_node), a(c.node_count), a(c.first_element), a(c.bending);
   }
 

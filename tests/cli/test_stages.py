@@ -72,6 +72,18 @@ class StagedSceneTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         return out, json.loads((out / "summary.json").read_text())["results"]
 
+    def resume_copy(self, ref, cp, name):
+        """A copy of the finished run `ref` as if killed after checkpoint `cp` (later
+        checkpoints removed), resumed with scenario NAME.toml; returns its folder."""
+        out = self.dir / (f"{name}_from_" + cp.stem)
+        shutil.copytree(ref, out)
+        for later in (out / "checkpoint").glob("checkpoint_*.bin"):
+            if later.name > cp.name:
+                later.unlink()
+        r = run("run", str(self.dir / f"{name}.toml"), "--resume", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return out
+
     def test_servo_stage_holds_its_target_and_the_walls_carry_the_weight(self):
         out, res = self.run_scene(SMALL_STAGED)
         stages = res["stages"]
@@ -117,13 +129,7 @@ class StagedSceneTest(unittest.TestCase):
                 chosen.append(cp)
         self.assertEqual(len(seen), 4)
         for cp in chosen:
-            out = self.dir / ("from_" + cp.stem)
-            shutil.copytree(ref, out)
-            for later in (out / "checkpoint").glob("checkpoint_*.bin"):
-                if later.name > cp.name:
-                    later.unlink()
-            r = run("run", str(self.dir / "ref.toml"), "--resume", str(out), "--quiet")
-            self.assertEqual(r.returncode, 0, r.stderr)
+            out = self.resume_copy(ref, cp, "ref")
             got = comparable(out)
             self.assertEqual(got[1], expected[1], cp.name)
             self.assertEqual(got[0], expected[0], cp.name)
@@ -235,14 +241,7 @@ plots = false
         expected = comparable(b)
         checkpoints = sorted((b / "checkpoint").glob("checkpoint_*.bin"))
         cp = checkpoints[len(checkpoints) * 3 // 4]
-        out = self.dir / "b_resumed"
-        shutil.copytree(b, out)
-        for later in (out / "checkpoint").glob("checkpoint_*.bin"):
-            if later.name > cp.name:
-                later.unlink()
-        r = run("run", str(self.dir / "b.toml"), "--resume", str(out), "--quiet")
-        self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertEqual(comparable(out), expected)
+        self.assertEqual(comparable(self.resume_copy(b, cp, "b")), expected)
         # A checkpoint that does not fit is an input error naming [start].
         bad = b_text.replace('name = "sand"', 'name = "clay"')
         p = self.dir / "bad.toml"
