@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "base/error.hpp"
+#include "builder_binding.hpp"
+#include "dict_to_toml.hpp"
 #include "io/checkpoint.hpp"
 #include "io/run_output.hpp"
 #include "kinds/scenario_kind.hpp"
@@ -18,50 +20,6 @@ namespace py = pybind11;
 
 namespace {
 
-// A Python value as a TOML node: bool, int, float, str, list/tuple and dict (nested).
-toml::table to_table(const py::dict& d, const std::string& where);
-
-void insert(toml::array& a, py::handle v, const std::string& where);
-
-template <typename Put>
-void put_value(py::handle v, const std::string& where, Put&& put) {
-  if (py::isinstance<py::bool_>(v)) {
-    put(v.cast<bool>());
-  } else if (py::isinstance<py::int_>(v)) {
-    put(v.cast<long long>());
-  } else if (py::isinstance<py::float_>(v)) {
-    put(v.cast<double>());
-  } else if (py::isinstance<py::str>(v)) {
-    put(v.cast<std::string>());
-  } else if (py::isinstance<py::dict>(v)) {
-    put(to_table(v.cast<py::dict>(), where));
-  } else if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
-    toml::array a;
-    for (auto item : v) insert(a, item, where);
-    put(std::move(a));
-  } else if (py::hasattr(v, "tolist")) {  // numpy arrays and scalars
-    put_value(v.attr("tolist")(), where, put);
-  } else {
-    throw geodem::InputError("<dict>", 0, where,
-                             "expected a bool, number, string, list or dict, got " +
-                                 py::str(py::type::of(v)).cast<std::string>());
-  }
-}
-
-void insert(toml::array& a, py::handle v, const std::string& where) {
-  put_value(v, where, [&a](auto&& x) { a.push_back(std::forward<decltype(x)>(x)); });
-}
-
-toml::table to_table(const py::dict& d, const std::string& where) {
-  toml::table t;
-  for (auto [k, v] : d) {
-    const std::string key = py::str(k);
-    const std::string path = where.empty() ? key : where + "." + key;
-    put_value(v, path, [&](auto&& x) { t.insert_or_assign(key, std::forward<decltype(x)>(x)); });
-  }
-  return t;
-}
-
 // A scenario given as a path or a dict, with --set style overrides for a path.
 geodem::LoadedScenario load(py::handle scenario, const std::vector<std::string>& overrides,
                             std::string& name) {
@@ -69,7 +27,8 @@ geodem::LoadedScenario load(py::handle scenario, const std::vector<std::string>&
     if (!overrides.empty())
       throw geodem::InputError("<dict>", 0, "overrides", "edit the dict instead");
     name = "<dict>";
-    return geodem::load_known_scenario_table(to_table(scenario.cast<py::dict>(), ""), name);
+    return geodem::load_known_scenario_table(
+        geodem::python::to_table(scenario.cast<py::dict>(), ""), name);
   }
   name = py::str(scenario).cast<std::string>();  // str or os.PathLike
   return geodem::load_known_scenario(name, overrides);
@@ -144,6 +103,7 @@ PYBIND11_MODULE(geodem, m) {
       "files as `geodem run`; returns summary.json as a dict (plus its exit_code).");
 
   geodem::python::bind_scenes(m);
+  geodem::python::bind_builders(m);
   m.def(
       "load",
       [](const std::string& path) -> py::object {
@@ -178,16 +138,25 @@ PYBIND11_MODULE(geodem, m) {
       "scene",
       [](py::handle scenario, const std::vector<std::string>& overrides) -> py::object {
         std::string name;
-        const auto l = load(scenario, overrides, name);
+        py::object given = py::reinterpret_borrow<py::object>(scenario);
+        if (py::isinstance<py::dict>(scenario) && !scenario.contains("kind")) {
+          py::dict d(scenario.cast<py::dict>());  // a copy: the caller's dict stays as it is
+          d["kind"] = "scene";
+          given = d;
+        }
+        const auto l = load(given, overrides, name);
         if (l.kind != "scene")
           throw geodem::InputError(name, l.kind_line, "kind",
                                    "geodem.scene builds kind = \"scene\"; run the other kinds "
                                    "with geodem.run");
-        geodem::SceneSettings s = geodem::read_scene(l.root, name);
+        // Grains may come later, from Python (add_grains, add_cloud, add_clumps), and Python
+        // says how long it runs.
+        geodem::SceneSettings s = geodem::read_scene(l.root, name, true);
         if (s.dimension == 2) return py::cast(geodem::python::Scene<2>(std::move(s)));
         return py::cast(geodem::python::Scene<3>(std::move(s)));
       },
       py::arg("scenario"), py::arg("overrides") = std::vector<std::string>{},
-      "Builds the world of a scene (a path or a dict) as `geodem run` does, to step it from "
-      "Python: a Scene2D or Scene3D.");
+      "Builds the world of a scene (a path or a dict; a dict's kind defaults to \"scene\") as "
+      "`geodem run` does, to step it from Python: a Scene2D or Scene3D. It may have no grains "
+      "yet: add them with add_grains, add_cloud or add_clumps.");
 }

@@ -27,6 +27,7 @@ Scene<D>::Scene(SceneSettings settings) : settings_(std::move(settings)) {
   build_world<D>(settings_, world_);
   if (!settings_.start_checkpoint.empty()) start_from_checkpoint(settings_, world_);
   world_.particles.stable_buffers = true;  // the numpy views stay valid across steps
+  clouds_added = settings_.clouds.empty() ? 0 : 1;
   if (settings_.bonds_initial) create_bonds(world_, settings_.bond_gap_tolerance);
   update_timestep(world_);  // as the command line's scene runner does before its first step
 }

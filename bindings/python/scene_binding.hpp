@@ -49,6 +49,9 @@ class Scene {
  public:
   // Positions by grain id at the moment set_reference() was called (empty: none).
   std::vector<typename Dim<D>::Vec> reference;
+  // Random streams taken by clouds so far (the scenario's clouds share the first): each
+  // cloud added from Python draws from a stream of its own.
+  std::uint64_t clouds_added = 0;
 
  private:
   std::shared_ptr<VtkSeries<D>> vtk_;

@@ -162,8 +162,7 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
         t.stats.fabric_stress += d * f.transpose();
         t.stats.sum_force += f.norm();
         ++t.stats.contacts;
-        if (fn > 0.0 && law.law == LawKind::kLinear)
-          t.stats.elastic_energy += 0.5 * fn * fn / law.linear_kn(ri, rj);
+        if (fn > 0.0) t.stats.elastic_energy += normal_energy(law, ri, rj, fn, delta);
       }
     }
     force[i] += fi;
@@ -248,7 +247,7 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
       }
       t.wall_force[L.wall[k]] += f;
       t.wall_stiffness[L.wall[k]] +=
-          law.law == LawKind::kLinear ? law.linear_kn(ri, ri) : 1.5 * fn / delta;
+          normal_stiffness(law, ri, wall_partner_radius(law, ri), fn, delta);
       if (world.tally_wall_dashpots)
         t.wall_dashpot[L.wall[k]] +=
             normal_dashpot(law, ri, wall_partner_radius(law, ri), inv_m, delta);
@@ -256,8 +255,8 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
         t.stats.fabric_stress += (a * nrm) * f.transpose();
         t.stats.sum_force += f.norm();
         ++t.stats.wall_contacts;
-        if (fn > 0.0 && law.law == LawKind::kLinear)
-          t.stats.elastic_energy += 0.5 * fn * fn / law.linear_kn(ri, ri);
+        if (fn > 0.0)
+          t.stats.elastic_energy += normal_energy(law, ri, wall_partner_radius(law, ri), fn, delta);
       }
     }
   };

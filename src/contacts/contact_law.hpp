@@ -20,44 +20,93 @@ struct NormalResult {
   double cn;  // normal viscous coefficient (N s/m), 0 without damping
 };
 
-// Radius that stands for a flat wall in the pair law of a grain of radius r. The Hertz law
-// needs the wall's true (infinite) radius of curvature, so that R* = r; the linear law's
-// modulus form takes the wall as a grain of equal radius, kn = 2 E1 E2 r / (E1 + E2).
+// Each law's formulas in one place: the normal force with its dashpot, the stiffnesses the
+// time step and the servos need, the stored energy, and how a flat wall enters (its
+// partner radius). r1, r2 are radii (r2 = partner_radius for a wall), inv_msum = 1/m1 +
+// 1/m2 (m* = 1/inv_msum; 0: no dashpot), delta > 0 the overlap, vn the normal speed.
+
+// Linear spring-dashpot (Cundall-Strack; LIGGGHTS/LAMMPS "hooke"): fn = kn delta - cn vn,
+// cn = 2 beta sqrt(kn m*), kt from kn (PairLaw::linear_kn / linear_kt).
+struct LinearLaw {
+  // A wall as a grain of equal radius: kn = 2 E1 E2 r / (E1 + E2).
+  static double partner_radius(double r) { return r; }
+  [[gnu::always_inline]] static double dashpot(const PairLaw& p, double kn, double inv_msum) {
+    return (p.beta > 0.0 && inv_msum > 0.0) ? 2.0 * p.beta * std::sqrt(kn / inv_msum) : 0.0;
+  }
+  [[gnu::always_inline]] static NormalResult normal(const PairLaw& p, double r1, double r2,
+                                                    double inv_msum, double delta, double vn) {
+    const double kn = p.linear_kn(r1, r2);
+    const double cn = dashpot(p, kn, inv_msum);
+    return {kn * delta - cn * vn, p.linear_kt(kn), cn};
+  }
+  static double normal_stiffness(const PairLaw& p, double r1, double r2) {
+    return p.linear_kn(r1, r2);
+  }
+  // The spring's elastic energy fn^2 / (2 kn).
+  static double energy(const PairLaw& p, double r1, double r2, double fn) {
+    return 0.5 * fn * fn / p.linear_kn(r1, r2);
+  }
+};
+
+// Hertz-Mindlin without slip (LIGGGHTS/LAMMPS "hertz"): fn = 4/3 E* sqrt(R*) delta^1.5 - cn
+// vn, kt = 8 G* a with a = sqrt(R* delta), cn = hertz_damp sqrt(2 E* a m*) (Tsuji's form).
+struct HertzLaw {
+  // A flat wall has an infinite radius of curvature: R* = r.
+  static double partner_radius(double) { return std::numeric_limits<double>::infinity(); }
+  static double reduced_radius(double r1, double r2) {
+    return std::isinf(r2) ? r1 : r1 * r2 / (r1 + r2);
+  }
+  [[gnu::always_inline]] static double dashpot(const PairLaw& p, double a, double inv_msum) {
+    return (p.hertz_damp > 0.0 && inv_msum > 0.0)
+               ? p.hertz_damp * std::sqrt(2.0 * p.estar * a / inv_msum)
+               : 0.0;
+  }
+  [[gnu::always_inline]] static NormalResult normal(const PairLaw& p, double r1, double r2,
+                                                    double inv_msum, double delta, double vn) {
+    const double a = std::sqrt(reduced_radius(r1, r2) * delta);  // contact radius
+    const double cn = dashpot(p, a, inv_msum);
+    return {4.0 / 3.0 * p.estar * a * delta - cn * vn, 8.0 * p.gstar * a, cn};
+  }
+  // dfn/ddelta = 2 E* a = 3/2 fn / delta (elastic part).
+  static double normal_stiffness(double fn, double delta) { return 1.5 * fn / delta; }
+  static double tangential_stiffness(const PairLaw& p, double r1, double r2, double delta) {
+    return 8.0 * p.gstar * std::sqrt(reduced_radius(r1, r2) * std::max(delta, 0.0));
+  }
+  // The integral of fn d(delta): 2/5 fn delta.
+  static double energy(double fn, double delta) { return 0.4 * fn * delta; }
+};
+
+// Radius that stands for a flat wall in the pair law of a grain of radius r.
 inline double wall_partner_radius(const PairLaw& p, double r) {
-  return p.law == LawKind::kHertz ? std::numeric_limits<double>::infinity() : r;
+  return p.law == LawKind::kHertz ? HertzLaw::partner_radius(r) : LinearLaw::partner_radius(r);
 }
 
 // Normal force of the pair's law; also returns the tangential stiffness.
-// inv_msum = 1/m1 + 1/m2 (m* = 1/inv_msum); r1, r2 radii (r2 = wall_partner_radius for walls).
 [[gnu::always_inline]] inline NormalResult normal_force(const PairLaw& p, double r1, double r2,
                                                         double inv_msum, double delta, double vn) {
-  if (p.law == LawKind::kLinear) {
-    const double kn = p.linear_kn(r1, r2);
-    const double cn =
-        (p.beta > 0.0 && inv_msum > 0.0) ? 2.0 * p.beta * std::sqrt(kn / inv_msum) : 0.0;
-    return {kn * delta - cn * vn, p.linear_kt(kn), cn};
-  }
-  // Hertz-Mindlin (no slip): Fn = 4/3 E* sqrt(R*) delta^1.5, kt = 8 G* sqrt(R* delta).
-  // A flat wall has r2 = infinity (see wall_partner_radius): R* = r1.
-  const double rstar = std::isinf(r2) ? r1 : r1 * r2 / (r1 + r2);
-  const double a = std::sqrt(rstar * delta);  // contact radius
-  const double cn = (p.hertz_damp > 0.0 && inv_msum > 0.0)
-                        ? p.hertz_damp * std::sqrt(2.0 * p.estar * a / inv_msum)
-                        : 0.0;
-  return {4.0 / 3.0 * p.estar * a * delta - cn * vn, 8.0 * p.gstar * a, cn};
+  return p.law == LawKind::kLinear ? LinearLaw::normal(p, r1, r2, inv_msum, delta, vn)
+                                   : HertzLaw::normal(p, r1, r2, inv_msum, delta, vn);
 }
 
 // The normal dashpot coefficient of a contact (the cn of normal_force), alone: what a servo
 // needs to know how the force answers the speed it gives a wall.
 inline double normal_dashpot(const PairLaw& p, double r1, double r2, double inv_msum,
                              double delta) {
-  if (inv_msum <= 0.0) return 0.0;
-  if (p.law == LawKind::kLinear)
-    return p.beta > 0.0 ? 2.0 * p.beta * std::sqrt(p.linear_kn(r1, r2) / inv_msum) : 0.0;
-  const double rstar = std::isinf(r2) ? r1 : r1 * r2 / (r1 + r2);
-  return p.hertz_damp > 0.0
-             ? p.hertz_damp * std::sqrt(2.0 * p.estar * std::sqrt(rstar * delta) / inv_msum)
-             : 0.0;
+  return p.law == LawKind::kLinear
+             ? LinearLaw::dashpot(p, p.linear_kn(r1, r2), inv_msum)
+             : HertzLaw::dashpot(p, std::sqrt(HertzLaw::reduced_radius(r1, r2) * delta), inv_msum);
+}
+
+// The normal stiffness dfn/ddelta of a contact whose elastic normal force is fn at overlap
+// delta: what the critical time step and the servos divide by.
+inline double normal_stiffness(const PairLaw& p, double r1, double r2, double fn, double delta) {
+  return p.law == LawKind::kLinear ? LinearLaw::normal_stiffness(p, r1, r2)
+                                   : HertzLaw::normal_stiffness(fn, delta);
+}
+
+// The energy stored in a contact's normal spring (elastic force fn > 0 at overlap delta).
+inline double normal_energy(const PairLaw& p, double r1, double r2, double fn, double delta) {
+  return p.law == LawKind::kLinear ? LinearLaw::energy(p, r1, r2, fn) : HertzLaw::energy(fn, delta);
 }
 
 // Keeps a spring (force or moment) in the current tangent plane with its magnitude:
@@ -81,9 +130,8 @@ template <typename Vec>
 
 // Tangential stiffness of the pair's law at overlap delta (r2 as in normal_force).
 inline double tangential_stiffness(const PairLaw& p, double r1, double r2, double delta) {
-  if (p.law == LawKind::kLinear) return p.linear_kt(p.linear_kn(r1, r2));
-  const double rstar = std::isinf(r2) ? r1 : r1 * r2 / (r1 + r2);
-  return 8.0 * p.gstar * std::sqrt(rstar * std::max(delta, 0.0));
+  return p.law == LawKind::kLinear ? p.linear_kt(p.linear_kn(r1, r2))
+                                   : HertzLaw::tangential_stiffness(p, r1, r2, delta);
 }
 
 // Tangential velocity of body 2 against body 1 in the spring's form: the vector vrel - (vrel.n) n

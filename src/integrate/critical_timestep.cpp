@@ -140,8 +140,7 @@ double critical_timestep(const World<D>& world) {
             const PairLaw& law = world.pair_law(P.material[i], P.material[j]);
             const double delta = rs - dist;
             const NormalResult nr = normal_force(law, P.radius[i], P.radius[j], 0.0, delta, 0.0);
-            const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[j])
-                                                          : 1.5 * nr.fn / delta;  // dF/d(delta)
+            const double kn = normal_stiffness(law, P.radius[i], P.radius[j], nr.fn, delta);
             const Vec nrm = d / dist;
             const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], P.radius[j]);
             const double kr = law.roll_mu > 0.0 ? k_roll : 0.0,
@@ -161,10 +160,9 @@ double critical_timestep(const World<D>& world) {
             if (delta <= 0.0 || (w.kind != WallKind::kPlane && gap <= 0.0)) continue;
             const Vec nrm = w.kind == WallKind::kPlane ? Vec(-w.normal) : Vec(d / gap);
             const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
-            const NormalResult nr = normal_force(
-                law, P.radius[i], wall_partner_radius(law, P.radius[i]), 0.0, delta, 0.0);
-            const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i])
-                                                          : 1.5 * nr.fn / delta;
+            const double r2 = wall_partner_radius(law, P.radius[i]);
+            const NormalResult nr = normal_force(law, P.radius[i], r2, 0.0, delta, 0.0);
+            const double kn = normal_stiffness(law, P.radius[i], r2, nr.fn, delta);
             const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], kWallRadius);
             const double kr = law.roll_mu > 0.0 ? k_roll : 0.0,
                          ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
@@ -182,10 +180,9 @@ double critical_timestep(const World<D>& world) {
               continue;
             const PairLaw& law = world.pair_law(P.material[i], S.material[e]);
             const double delta = P.radius[i] + S.half_thickness[e] - dist;
-            const NormalResult nr = normal_force(
-                law, P.radius[i], wall_partner_radius(law, P.radius[i]), 0.0, delta, 0.0);
-            const double kn = law.law == LawKind::kLinear ? law.linear_kn(P.radius[i], P.radius[i])
-                                                          : 1.5 * nr.fn / delta;
+            const double r2 = wall_partner_radius(law, P.radius[i]);
+            const NormalResult nr = normal_force(law, P.radius[i], r2, 0.0, delta, 0.0);
+            const double kn = normal_stiffness(law, P.radius[i], r2, nr.fn, delta);
             const Vec nrm = d / dist;
             add(body(i), nrm, kn, nr.kt, lever(i, nrm), 0.0, 0.0);
           }

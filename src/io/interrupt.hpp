@@ -20,8 +20,11 @@ struct Interrupted {
 };
 
 // For run loops without checkpoints (lab tests): after a whole step, stop on a signal.
-inline void stop_if_interrupted() {
+// The close of a step loop (io/step_loop.hpp) for a run without checkpoints: a signal
+// throws, so it never returns true.
+inline bool stopped_by_signal() {
   if (const int sig = interrupt_signal()) throw Interrupted{sig, ""};
+  return false;
 }
 
 }  // namespace geodem

@@ -67,6 +67,16 @@ void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0,
   u.near = grains_near_sheet(w, 2.0 * s.radius + 0.5 * s.thickness);
   for (std::size_t i = 0; i < n; ++i) u.near[i] = u.near[i] && P.pos[i].x() > 0.0 ? 1 : 0;
   u.node_start = w.spars.pos;
+  // The pull's own counters: records, profiles (taken from the back), the largest tension.
+  u.profile_at = s.profiles_at;
+  std::sort(u.profile_at.begin(), u.profile_at.end(), std::greater<>());
+  u.clamp0 = w.spars.pos[0];
+  u.next_record = s.max_displacement / s.history_points;
+  u.tension_sum = 0.0;
+  u.tension_steps = 0;
+  u.t_max = u.d_at_max = u.soil_at_max = u.displacement = 0.0;
+  u.soil_median_at_max = u.near_at_max = u.nodes_at_max = 0.0;
+  u.pull_start = w.step;
 }
 
 double anchoring_soil_displacement(const Pull& u, const World<2>& w, bool median,

@@ -68,7 +68,8 @@ inline const std::vector<std::string> kProfileColumns = {"displacement", "s", "t
 // anchoring zone, the grains' start positions and bands, the unit weight of the cover and
 // the load on the run-out, the earth pressure coefficients, both design estimates (with
 // the macroscopic interface friction) and the grains next to the sheet. `y0` is the
-// run-out level, `top` the cover's surface, `sigma_q` the surcharge.
+// run-out level, `top` the cover's surface, `sigma_q` the surcharge. Resets the pull's
+// counters (records, profiles, the largest tension so far).
 void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0, double top,
                 double sigma_q);
 

@@ -26,6 +26,7 @@
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
+#include "io/step_loop.hpp"
 #include "lab/deposit_cache.hpp"
 #include "lab/interface_box.hpp"
 #include "lab/interface_parameters.hpp"
@@ -109,32 +110,36 @@ struct InterfaceShear {
   // Steps until the soil is at rest (and the plate at its load, when there is one).
   void settle(const std::string& stage, const PlateServo<2>* plate) {
     const std::uint64_t every = 200;
-    for (std::uint64_t k = 1;; ++k) {
-      w.measure_this_step = k % every == 0;
-      step(w);
-      ++total_steps;
-      stop_if_interrupted();
-      if (!w.measure_this_step) continue;
-      const double unb = unbalanced_force_ratio(w);
-      double load_error = 0.0;
-      if (plate) load_error = std::abs(plate->pressure(w) / plate->target() - 1.0);
-      progress.update(
-          stage, w.step, w.time, -1.0,
-          "unbalanced " + format_sig(unb) + " (at rest below " + format_sig(s.settle_unbalanced) +
-              ")" +
-              (plate ? ", plate load off by " + format_sig(100.0 * load_error) + " % (within " +
-                           format_sig(100.0 * s.consolidation_tolerance) + " %)"
-                     : std::string()),
-          fraction(0.0));
-      if (k >= 5 * every && unb < s.settle_unbalanced && load_error < s.consolidation_tolerance &&
-          !soil_moving(w, s.soil.density))
-        return;
-      if (k >= s.max_settle_steps)
-        throw std::runtime_error(
-            stage + ": the soil did not come to rest (unbalanced force " + format_number(unb) +
-            ", plate load off by " + format_number(100.0 * load_error) + " % after " +
-            std::to_string(k) + " steps); raise time.max_settle_steps or soil.settle_unbalanced");
-    }
+    std::uint64_t k = 0;
+    step_loop(
+        w, total_steps, [] { return true; }, [&] { return ++k % every == 0; },
+        [&] { return settled(stage, plate, k, every); }, [] { return stopped_by_signal(); });
+  }
+
+  // After a step of settle(): the progress line on measured steps; true when at rest.
+  bool settled(const std::string& stage, const PlateServo<2>* plate, std::uint64_t k,
+               std::uint64_t every) {
+    if (!w.measure_this_step) return false;
+    const double unb = unbalanced_force_ratio(w);
+    double load_error = 0.0;
+    if (plate) load_error = std::abs(plate->pressure(w) / plate->target() - 1.0);
+    progress.update(
+        stage, w.step, w.time, -1.0,
+        "unbalanced " + format_sig(unb) + " (at rest below " + format_sig(s.settle_unbalanced) +
+            ")" +
+            (plate ? ", plate load off by " + format_sig(100.0 * load_error) + " % (within " +
+                         format_sig(100.0 * s.consolidation_tolerance) + " %)"
+                   : std::string()),
+        fraction(0.0));
+    if (k >= 5 * every && unb < s.settle_unbalanced && load_error < s.consolidation_tolerance &&
+        !soil_moving(w, s.soil.density))
+      return true;
+    if (k >= s.max_settle_steps)
+      throw std::runtime_error(stage + ": the soil did not come to rest (unbalanced force " +
+                               format_number(unb) + ", plate load off by " +
+                               format_number(100.0 * load_error) + " % after " + std::to_string(k) +
+                               " steps); raise time.max_settle_steps or soil.settle_unbalanced");
+    return false;
   }
 
   // Layers dropped from `base` up until the soil reaches `height`; trimmed there.
@@ -237,42 +242,45 @@ struct InterfaceShear {
     const std::uint64_t start = w.step;
     InterfaceCurve c;
     double servo_error = 0.0, servo_error_sum = 0.0;
-    while (u < s.max_displacement) {
-      const double u_next = std::abs(S.pos[0].x() - x0) + s.rate * w.dt;
-      w.measure_this_step = u_next >= next || u_next >= s.max_displacement;
-      step(w);
-      ++total_steps;
-      stop_if_interrupted();
-      u = std::abs(S.pos[0].x() - x0);
-      const double pressure = servo->pressure(w);
-      if (soil_base()) {
-        // Each face of the embedded length carries half the clamp's tension.
-        const double embedded = std::max(S.pos[S.nodes() - 1].x(), s.radius);
-        sum_t += S.tension[0] / (2.0 * embedded), sum_n += pressure + weight;
-      } else {
-        const InterfaceStresses st = interface_stresses(w, s.box_length);
-        sum_t += st.shear, sum_n += st.normal;
-      }
-      sum_p += pressure, ++steps;
-      if (u + 1e-15 < next && u < s.max_displacement) continue;
-      // A row holds the means since the previous one: the per-step values carry the
-      // grains' vibrations.
-      const double n = static_cast<double>(steps);
-      const double tau = sum_t / n, sig = sum_n / n, pl = sum_p / n;
-      const double rise = w.walls[plate_wall].point.y() - plate0;
-      history.row({static_cast<double>(test), sigma_n, static_cast<double>(w.step), w.time, u, tau,
-                   sig, sig > 0.0 ? tau / sig : 0.0, pl, rise, kinetic_energy(w),
-                   static_cast<double>(w.stats.spar_contacts)});
-      c.displacement.push_back(u), c.shear.push_back(tau), c.normal.push_back(sig);
-      c.dilation.push_back(rise);
-      servo_error = std::max(servo_error, std::abs(pl / servo->target() - 1.0));
-      servo_error_sum += std::abs(pl / servo->target() - 1.0);
-      sum_t = sum_n = sum_p = 0.0, steps = 0;
-      while (next <= u + 1e-15) next += d_record;
-      progress.update(name + ": shear", w.step, w.time, u / s.max_displacement,
-                      "tau/sigma " + format_sig(sig > 0.0 ? tau / sig : 0.0),
-                      fraction(u / s.max_displacement));
-    }
+    step_loop(
+        w, total_steps, [&] { return u < s.max_displacement; },
+        [&] {
+          const double u_next = std::abs(S.pos[0].x() - x0) + s.rate * w.dt;
+          return u_next >= next || u_next >= s.max_displacement;
+        },
+        [&] {
+          u = std::abs(S.pos[0].x() - x0);
+          const double pressure = servo->pressure(w);
+          if (soil_base()) {
+            // Each face of the embedded length carries half the clamp's tension.
+            const double embedded = std::max(S.pos[S.nodes() - 1].x(), s.radius);
+            sum_t += S.tension[0] / (2.0 * embedded), sum_n += pressure + weight;
+          } else {
+            const InterfaceStresses st = interface_stresses(w, s.box_length);
+            sum_t += st.shear, sum_n += st.normal;
+          }
+          sum_p += pressure, ++steps;
+          if (u + 1e-15 < next && u < s.max_displacement) return false;
+          // A row holds the means since the previous one: the per-step values carry the
+          // grains' vibrations.
+          const double n = static_cast<double>(steps);
+          const double tau = sum_t / n, sig = sum_n / n, pl = sum_p / n;
+          const double rise = w.walls[plate_wall].point.y() - plate0;
+          history.row({static_cast<double>(test), sigma_n, static_cast<double>(w.step), w.time, u,
+                       tau, sig, sig > 0.0 ? tau / sig : 0.0, pl, rise, kinetic_energy(w),
+                       static_cast<double>(w.stats.spar_contacts)});
+          c.displacement.push_back(u), c.shear.push_back(tau), c.normal.push_back(sig);
+          c.dilation.push_back(rise);
+          servo_error = std::max(servo_error, std::abs(pl / servo->target() - 1.0));
+          servo_error_sum += std::abs(pl / servo->target() - 1.0);
+          sum_t = sum_n = sum_p = 0.0, steps = 0;
+          while (next <= u + 1e-15) next += d_record;
+          progress.update(name + ": shear", w.step, w.time, u / s.max_displacement,
+                          "tau/sigma " + format_sig(sig > 0.0 ? tau / sig : 0.0),
+                          fraction(u / s.max_displacement));
+          return false;
+        },
+        [] { return stopped_by_signal(); });
     if (s.vtk) vtk.write(w);
     const InterfaceTest t = interface_test(c, s.residual_from);
     return {{"normal_stress_target", sigma_n},

@@ -20,10 +20,10 @@
 #include "base/random.hpp"
 #include "contacts/bonds.hpp"
 #include "controllers/surface_pressure.hpp"
-#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
+#include "io/step_loop.hpp"
 #include "lab/anchorage.hpp"
 #include "lab/anchorage_mechanism.hpp"
 #include "lab/deposit_cache.hpp"
@@ -32,7 +32,6 @@
 #include "lab/sheet_inertia.hpp"
 #include "lab/soil_deposit.hpp"
 #include "measure/measurements.hpp"
-#include "world/step.hpp"
 #include "world/world_editing.hpp"
 #include "world/world_state.hpp"
 
@@ -118,7 +117,9 @@ struct Pullout {
   }
 
   // After a whole step: a checkpoint when due, and the stop on a signal.
-  void after_step() {
+  // Closes a step of a loop (io/step_loop.hpp): a checkpoint when due; a signal stops the
+  // run by throwing Interrupted, so the loop never goes on from here.
+  bool after_step() {
     checkpoints.after_step(total_steps, w.time, [&](StateWriter& runner, StateWriter& world) {
       visit_state(runner);
       runner(elapsed());
@@ -127,6 +128,7 @@ struct Pullout {
       vtk.save(runner);
       save_world_state(world, w);
     });
+    return false;
   }
 
   void build() {
@@ -200,30 +202,28 @@ struct Pullout {
   // where a checkpoint left it (stage_step).
   void settle(const std::string& stage, double stage_code) {
     const std::uint64_t every = 200;
-    for (;;) {
-      const std::uint64_t k = ++stage_step;
-      w.measure_this_step = k % every == 0;
-      step(w);
-      ++total_steps;
-      if (w.measure_this_step) {
-        const double unb = unbalanced_force_ratio(w);
-        progress.update(stage, w.step, w.time, -1.0,
-                        std::to_string(w.particles.size()) + " grains, unbalanced " +
-                            format_sig(unb) + " (at rest below " + format_sig(s.settle_unbalanced) +
-                            ")");
-        if (k % (5 * every) == 0) prep_row(stage_code, unb);
-        if (k >= 5 * every && unb < s.settle_unbalanced && !soil_moving(w, s.soil.density)) {
-          stage_step = 0;
-          return;
-        }
-        if (k >= s.max_settle_steps)
-          throw std::runtime_error(
-              stage + ": the soil did not come to rest (unbalanced force " + format_number(unb) +
-              " after " + std::to_string(k) +
-              " steps); raise time.max_settle_steps or soil.settle_unbalanced");
-      }
-      after_step();
-    }
+    step_loop(
+        w, total_steps, [] { return true; }, [&] { return ++stage_step % every == 0; },
+        [&] {
+          if (!w.measure_this_step) return false;
+          const std::uint64_t k = stage_step;
+          const double unb = unbalanced_force_ratio(w);
+          progress.update(stage, w.step, w.time, -1.0,
+                          std::to_string(w.particles.size()) + " grains, unbalanced " +
+                              format_sig(unb) + " (at rest below " +
+                              format_sig(s.settle_unbalanced) + ")");
+          if (k % (5 * every) == 0) prep_row(stage_code, unb);
+          if (k >= 5 * every && unb < s.settle_unbalanced && !soil_moving(w, s.soil.density))
+            return true;
+          if (k >= s.max_settle_steps)
+            throw std::runtime_error(
+                stage + ": the soil did not come to rest (unbalanced force " + format_number(unb) +
+                " after " + std::to_string(k) +
+                " steps); raise time.max_settle_steps or soil.settle_unbalanced");
+          return false;
+        },
+        [&] { return after_step(); });
+    stage_step = 0;
   }
 
   // Deposits layers over [x0, x1] until the surface there reaches `height`.
@@ -371,17 +371,8 @@ struct Pullout {
     if (s.vtk) vtk.write(w);
     history.open(opt.out_dir + "/history.csv", kHistoryColumns);
     profiles.open(opt.out_dir + "/tension_profiles.csv", kProfileColumns);
-    u.profile_at = s.profiles_at;
-    std::sort(u.profile_at.begin(), u.profile_at.end(), std::greater<>());
     w.local_damping = s.pull_damping;
-    u.clamp0 = S.pos[0];
     S.vel[0] = Vec(-s.rate, 0.0);
-    u.next_record = s.max_displacement / s.history_points;
-    u.tension_sum = 0.0;
-    u.tension_steps = 0;
-    u.t_max = u.d_at_max = u.soil_at_max = u.displacement = 0.0;
-    u.soil_median_at_max = u.near_at_max = u.nodes_at_max = 0.0;
-    u.pull_start = w.step;
     phase = Phase::kPull;
   }
 
@@ -390,49 +381,58 @@ struct Pullout {
     auto& S = w.spars;
     Pull& u = pull;
     const double d_record = s.max_displacement / s.history_points;
-    while (u.displacement < s.max_displacement) {
-      const double next_d = u.clamp0.x() - (S.pos[0].x() - s.rate * w.dt);
-      w.measure_this_step = next_d >= u.next_record || next_d >= s.max_displacement;
-      step(w);
-      ++total_steps;
-      u.displacement = u.clamp0.x() - S.pos[0].x();
-      u.tension_sum += S.tension[0];
-      ++u.tension_steps;
-      // The last row is always written, even when a change of dt made the prediction miss it.
-      if (w.measure_this_step || u.displacement >= s.max_displacement) {
-        // The tension of a row is its mean over the steps since the previous row: the
-        // per-step value carries the sheet's own vibrations.
-        const double T = u.tension_sum / static_cast<double>(u.tension_steps);
-        const double soil = anchoring_soil_displacement(u, w, false, moved),
-                     median = anchoring_soil_displacement(u, w, true, moved);
-        const double near = mean_grain_displacement(w, u.near, u.start);
-        const double nodes = mean_embedded_node_displacement(w, u.node_start);
-        history.row({static_cast<double>(w.step), w.time, u.displacement, T, S.tension[0], soil,
-                     median, kinetic_energy(w), unbalanced_force_ratio(w),
-                     static_cast<double>(w.stats.spar_contacts), near, nodes});
-        if (T > u.t_max) {
-          u.t_max = T, u.d_at_max = u.displacement, u.soil_at_max = soil;
-          u.soil_median_at_max = median, u.near_at_max = near, u.nodes_at_max = nodes;
-        }
-        u.tension_sum = 0.0;
-        u.tension_steps = 0;
-        while (u.next_record <= u.displacement) u.next_record += d_record;
-        progress.update("pull", w.step, w.time, u.displacement / s.max_displacement,
-                        "T " + format_sig(T) + " N/m");
-      }
-      while (!u.profile_at.empty() && u.displacement >= u.profile_at.back() - 1e-12) {
-        double arc = 0.0;
-        for (std::size_t e = 0; e < S.elements(); ++e) {
-          const double len = S.length(e);
-          profiles.row({u.profile_at.back(), arc + 0.5 * len, S.tension[e]});
-          arc += len;
-        }
-        if (s.vtk) vtk.write(w);
-        u.profile_at.pop_back();
-      }
-      after_step();
-    }
+    step_loop(
+        w, total_steps, [&] { return u.displacement < s.max_displacement; },
+        [&] {
+          const double next_d = u.clamp0.x() - (S.pos[0].x() - s.rate * w.dt);
+          return next_d >= u.next_record || next_d >= s.max_displacement;
+        },
+        [&] { return record_pull(d_record); }, [&] { return after_step(); });
     phase = Phase::kDone;
+  }
+
+  // After a step of the pull: the clamp's displacement and tension, a history row when
+  // one is due, the tension profiles the displacement has reached. Never stops the loop
+  // (false): the pull ends at its displacement.
+  bool record_pull(double d_record) {
+    auto& S = w.spars;
+    Pull& u = pull;
+    u.displacement = u.clamp0.x() - S.pos[0].x();
+    u.tension_sum += S.tension[0];
+    ++u.tension_steps;
+    // The last row is always written, even when a change of dt made the prediction miss it.
+    if (w.measure_this_step || u.displacement >= s.max_displacement) {
+      // The tension of a row is its mean over the steps since the previous row: the
+      // per-step value carries the sheet's own vibrations.
+      const double T = u.tension_sum / static_cast<double>(u.tension_steps);
+      const double soil = anchoring_soil_displacement(u, w, false, moved),
+                   median = anchoring_soil_displacement(u, w, true, moved);
+      const double near = mean_grain_displacement(w, u.near, u.start);
+      const double nodes = mean_embedded_node_displacement(w, u.node_start);
+      history.row({static_cast<double>(w.step), w.time, u.displacement, T, S.tension[0], soil,
+                   median, kinetic_energy(w), unbalanced_force_ratio(w),
+                   static_cast<double>(w.stats.spar_contacts), near, nodes});
+      if (T > u.t_max) {
+        u.t_max = T, u.d_at_max = u.displacement, u.soil_at_max = soil;
+        u.soil_median_at_max = median, u.near_at_max = near, u.nodes_at_max = nodes;
+      }
+      u.tension_sum = 0.0;
+      u.tension_steps = 0;
+      while (u.next_record <= u.displacement) u.next_record += d_record;
+      progress.update("pull", w.step, w.time, u.displacement / s.max_displacement,
+                      "T " + format_sig(T) + " N/m");
+    }
+    while (!u.profile_at.empty() && u.displacement >= u.profile_at.back() - 1e-12) {
+      double arc = 0.0;
+      for (std::size_t e = 0; e < S.elements(); ++e) {
+        const double len = S.length(e);
+        profiles.row({u.profile_at.back(), arc + 0.5 * len, S.tension[e]});
+        arc += len;
+      }
+      if (s.vtk) vtk.write(w);
+      u.profile_at.pop_back();
+    }
+    return false;
   }
 
   void run_phases() {
@@ -471,9 +471,6 @@ struct Pullout {
   }
 };
 
-}  // namespace
-
-namespace {
 nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt) {
   Pullout run(s, opt);
   run_lab_phases(run, "pullout", s.resolved, opt);

@@ -14,17 +14,16 @@
 #include "controllers/axial_strain_rate.hpp"
 #include "controllers/radius_growth.hpp"
 #include "controllers/stress_servo.hpp"
-#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
+#include "io/step_loop.hpp"
 #include "lab/lab_phases.hpp"
 #include "lab/soil_parameters.hpp"
 #include "lab/triaxial_test_state.hpp"
 #include "measure/measurements.hpp"
 #include "particles/random_cloud.hpp"
 #include "walls/lab_box.hpp"
-#include "world/step.hpp"
 #include "world/world_state.hpp"
 
 namespace geodem {
@@ -106,7 +105,9 @@ struct Lab {
 
   // After a whole step: a checkpoint when due, and the stop on a signal. Checkpoints are
   // numbered by the run's step count: the world's restarts with each test's sample.
-  void after_step() {
+  // Closes a step of a loop (io/step_loop.hpp): a checkpoint when due; a signal stops the
+  // run by throwing Interrupted, so the loop never goes on from here.
+  bool after_step() {
     checkpoints.after_step(total_steps, w.time, [&](StateWriter& runner, StateWriter& world) {
       visit_state(runner);
       runner(elapsed());
@@ -122,6 +123,7 @@ struct Lab {
       }
       save_world_state(world, w);
     });
+    return false;
   }
 
   // Steps with measurement every `every` steps; stops when `done()` holds on a
@@ -130,25 +132,20 @@ struct Lab {
   template <typename Done>
   bool run_until(const std::string& stage, std::uint64_t max_steps, std::uint64_t every,
                  Done&& done) {
-    while (stage_step < max_steps) {
-      const std::uint64_t k = ++stage_step;
-      w.measure_this_step = k % every == 0;
-      step(w);
-      ++total_steps;
-      if (w.measure_this_step) {
-        const double unb = unbalanced_force_ratio(w);
-        progress.update(stage, w.step, w.time, -1.0,
-                        "mean stress " + format_sig(box.mean_stress(w)) + " Pa, porosity " +
-                            format_sig(porosity()) + ", unbalanced " + format_sig(unb));
-        if (done(unb)) {
-          stage_step = 0;
-          return true;
-        }
-      }
-      after_step();
-    }
+    const bool met = step_loop(
+        w, total_steps, [&] { return stage_step < max_steps; },
+        [&] { return ++stage_step % every == 0; },
+        [&] {
+          if (!w.measure_this_step) return false;
+          const double unb = unbalanced_force_ratio(w);
+          progress.update(stage, w.step, w.time, -1.0,
+                          "mean stress " + format_sig(box.mean_stress(w)) + " Pa, porosity " +
+                              format_sig(porosity()) + ", unbalanced " + format_sig(unb));
+          return done(unb);
+        },
+        [&] { return after_step(); });
     stage_step = 0;
-    return false;
+    return met;
   }
 
   // One row of preparation.csv; phase 1 compaction, 2 friction reduction, 3 stabilisation.
@@ -382,22 +379,25 @@ struct Lab {
   void compression() {
     const double d_eps = s.max_axial_strain / s.history_points;
     Shear<D>& h = shear;
-    while (h.eps < s.max_axial_strain) {
-      // Wall stresses come every step; the contact statistics (coordination, unbalanced
-      // force) only on steps that may be recorded: those that reach the next record point.
-      const double next_eps = h.eps + 2.0 * s.strain_rate * w.dt;
-      w.measure_this_step = next_eps >= h.next_record || next_eps >= s.max_axial_strain;
-      step(w);
-      ++total_steps;
-      h.eps = box.strain(w, kAxial, h.ref);
-      if (w.measure_this_step && (h.eps >= h.next_record || h.eps >= s.max_axial_strain))
-        record(d_eps);
-      while (s.vtk && !h.vtk_left.empty() && h.eps >= h.vtk_left.back()) {
-        vtk.write(w);
-        h.vtk_left.pop_back();
-      }
-      after_step();
-    }
+    step_loop(
+        w, total_steps, [&] { return h.eps < s.max_axial_strain; },
+        [&] {
+          // Wall stresses come every step; the contact statistics (coordination, unbalanced
+          // force) only on steps that may be recorded: those that reach the next record point.
+          const double next_eps = h.eps + 2.0 * s.strain_rate * w.dt;
+          return next_eps >= h.next_record || next_eps >= s.max_axial_strain;
+        },
+        [&] {
+          h.eps = box.strain(w, kAxial, h.ref);
+          if (w.measure_this_step && (h.eps >= h.next_record || h.eps >= s.max_axial_strain))
+            record(d_eps);
+          while (s.vtk && !h.vtk_left.empty() && h.eps >= h.vtk_left.back()) {
+            vtk.write(w);
+            h.vtk_left.pop_back();
+          }
+          return false;
+        },
+        [&] { return after_step(); });
     finish_test();
   }
 

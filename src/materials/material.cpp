@@ -42,8 +42,7 @@ PairLaw combine(const Material& a, const Material& b) {
     p.estar = 1.0 / ((1 - a.poisson * a.poisson) / a.young + (1 - b.poisson * b.poisson) / b.young);
     p.gstar = 1.0 / (2 * (2 - a.poisson) * (1 + a.poisson) / a.young +
                      2 * (2 - b.poisson) * (1 + b.poisson) / b.young);
-    // Tsuji/LIGGGHTS: gamma_n = 2 sqrt(5/6) beta sqrt(Sn m*), Sn = 2 E* sqrt(R* delta).
-    p.hertz_damp = 2.0 * std::sqrt(5.0 / 6.0) * p.beta;
+    p.hertz_damp = PairLaw::hertz_damping(p.beta);
   }
   return p;
 }

@@ -65,13 +65,16 @@ struct PairLaw {
   double estar = 0.0, gstar = 0.0;  // Hertz-Mindlin effective moduli
   double mu = 0.0;                  // Coulomb coefficient
   double beta = 0.0;                // viscous damping ratio from the restitution
-  double hertz_damp = 0.0;          // 2 sqrt(5/6) * beta_hertz (LIGGGHTS/Tsuji form)
+  double hertz_damp = 0.0;          // hertz_damping(beta) (LIGGGHTS/Tsuji form)
   bool tangential_damping = false;
   double roll_mu = 0.0, twist_mu = 0.0, roll_kr = 1.0;
   double bond_tension = 0.0, bond_shear = 0.0;
   bool bond_as_force = false;
 
   bool rolling() const { return roll_mu > 0.0 || twist_mu > 0.0; }
+  // The Hertz law's dashpot factor for a damping ratio beta (Tsuji, LIGGGHTS): gamma_n =
+  // 2 sqrt(5/6) beta sqrt(Sn m*), Sn = 2 E* sqrt(R* delta) (contacts/contact_law.hpp).
+  static double hertz_damping(double beta) { return 2.0 * std::sqrt(5.0 / 6.0) * beta; }
   bool cohesive() const { return bond_tension > 0.0 || bond_shear > 0.0; }
   // Lever of the rolling moment: R = r1 r2/(r1 + r2) between grains, r1 against a wall
   // (r2 = kWallRadius).

@@ -234,6 +234,51 @@ void add_cloud(const SceneSettings& s, const CloudSpec& cl, const std::string& k
 }
 
 template <int D>
+void add_chain_spec(const ChainSpec& c, const SceneSettings& s, World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  std::vector<Vec> nodes = {to_vec<D>(c.points.front())};
+  for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
+    const Vec a = to_vec<D>(c.points[k]), b = to_vec<D>(c.points[k + 1]);
+    const int parts =
+        c.element_length > 0.0
+            ? std::max(1, static_cast<int>(std::ceil((b - a).norm() / c.element_length - 1e-9)))
+            : 1;
+    for (int j = 1; j <= parts; ++j) nodes.push_back(a + (b - a) * (double(j) / parts));
+  }
+  const auto count = static_cast<long long>(nodes.size());
+  for (long long h : c.held)
+    if (h < -count || h >= count)
+      throw InputError(s.file, 0, "chains." + c.name + ".held",
+                       "node " + std::to_string(h) + " does not exist (the chain has " +
+                           std::to_string(count) + " nodes)");
+  const std::size_t first = world.spars.nodes();
+  world.spars.add_chain(c.name, nodes, c.stiffness, c.mass_per_length, c.thickness,
+                        material_index(s.materials, c.material), c.bending);
+  for (long long h : c.held) {
+    const std::size_t i = first + static_cast<std::size_t>(h < 0 ? count + h : h);
+    world.spars.flags[i] = kNodeDriven;
+    world.spars.vel[i] = to_vec<D>(c.velocity);
+  }
+  world.rebuild_needed = true;
+}
+
+template <int D>
+Sphere<D> add_clump_spec(const ClumpSpec& c, const SceneSettings& s, World<D>& world) {
+  const auto m = material_index(s.materials, c.material);
+  typename Dim<D>::Orient q;
+  const double angle = c.angle_deg * std::numbers::pi / 180.0;
+  if constexpr (D == 2)
+    q = angle;
+  else
+    q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, to_vec<3>(c.axis).normalized()));
+  const auto shape = resolve_shape<D>(c.shape, s.templates);
+  add_clump(world, shape, to_vec<D>(c.position), q, c.scale, s.materials[m].density, m,
+            to_vec<D>(c.velocity));
+  world.rebuild_needed = true;
+  return {to_vec<D>(c.position), c.scale * shape.bounding_radius};
+}
+
+template <int D>
 void build_world(const SceneSettings& s, World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   world.materials = s.materials;
@@ -249,31 +294,7 @@ void build_world(const SceneSettings& s, World<D>& world) {
 
   for (const auto& w : s.walls)
     for (const auto& wall : walls_of<D>(w, s.materials)) world.walls.push_back(wall);
-  for (const auto& c : s.chains) {
-    std::vector<Vec> nodes = {to_vec<D>(c.points.front())};
-    for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
-      const Vec a = to_vec<D>(c.points[k]), b = to_vec<D>(c.points[k + 1]);
-      const int parts =
-          c.element_length > 0.0
-              ? std::max(1, static_cast<int>(std::ceil((b - a).norm() / c.element_length - 1e-9)))
-              : 1;
-      for (int j = 1; j <= parts; ++j) nodes.push_back(a + (b - a) * (double(j) / parts));
-    }
-    const std::size_t first = world.spars.nodes();
-    world.spars.add_chain(c.name, nodes, c.stiffness, c.mass_per_length, c.thickness,
-                          material_index(s.materials, c.material), c.bending);
-    const auto count = static_cast<long long>(nodes.size());
-    for (long long h : c.held) {
-      const long long k = h < 0 ? count + h : h;
-      if (k < 0 || k >= count)
-        throw InputError(s.file, 0, "chains." + c.name + ".held",
-                         "node " + std::to_string(h) + " does not exist (the chain has " +
-                             std::to_string(count) + " nodes)");
-      const std::size_t i = first + static_cast<std::size_t>(k);
-      world.spars.flags[i] = kNodeDriven;
-      world.spars.vel[i] = to_vec<D>(c.velocity);
-    }
-  }
+  for (const auto& c : s.chains) add_chain_spec(c, s, world);
   world.resolve_pair_laws();
   for (const auto& p : s.pairs) {
     const auto a = material_index(s.materials, p.a), b = material_index(s.materials, p.b);
@@ -282,7 +303,7 @@ void build_world(const SceneSettings& s, World<D>& world) {
       if (p.friction) law->mu = *p.friction;
       if (p.restitution) law->beta = damping_ratio(*p.restitution);
       if (p.restitution && law->law == LawKind::kHertz)
-        law->hertz_damp = 2.0 * std::sqrt(5.0 / 6.0) * law->beta;
+        law->hertz_damp = PairLaw::hertz_damping(law->beta);
       if (p.kn)
         law->constant_stiffness = true, law->kn = *p.kn, law->kt = p.kt.value_or(0.5 * *p.kn);
     }
@@ -323,24 +344,16 @@ void build_world(const SceneSettings& s, World<D>& world) {
   }
   reject_input_overlaps<D>(placed, source, s.max_overlap, s.file);
   Random rng(s.seed);
-  for (const auto& c : s.clumps) {
-    const auto m = material_index(s.materials, c.material);
-    typename Dim<D>::Orient q;
-    const double angle = c.angle_deg * std::numbers::pi / 180.0;
-    if constexpr (D == 2)
-      q = angle;
-    else
-      q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, to_vec<3>(c.axis).normalized()));
-    const auto shape = resolve_shape<D>(c.shape, s.templates);
-    add_clump(world, shape, to_vec<D>(c.position), q, c.scale, s.materials[m].density, m,
-              to_vec<D>(c.velocity));
-    placed.push_back({to_vec<D>(c.position), c.scale * shape.bounding_radius});
-  }
+  for (const auto& c : s.clumps) placed.push_back(add_clump_spec(c, s, world));
   for (std::size_t c = 0; c < s.clouds.size(); ++c)
     add_cloud(s, s.clouds[c], "clouds." + std::to_string(c), world, rng, placed);
 }
 
 template void build_world<2>(const SceneSettings&, World<2>&);
+template void add_chain_spec<2>(const ChainSpec&, const SceneSettings&, World<2>&);
+template void add_chain_spec<3>(const ChainSpec&, const SceneSettings&, World<3>&);
+template Sphere<2> add_clump_spec<2>(const ClumpSpec&, const SceneSettings&, World<2>&);
+template Sphere<3> add_clump_spec<3>(const ClumpSpec&, const SceneSettings&, World<3>&);
 template void build_world<3>(const SceneSettings&, World<3>&);
 template std::vector<Wall<2>> walls_of<2>(const WallSpec&, const std::vector<Material>&);
 template std::vector<Wall<3>> walls_of<3>(const WallSpec&, const std::vector<Material>&);

@@ -24,4 +24,13 @@ template <int D>
 void add_cloud(const SceneSettings& s, const CloudSpec& cloud, const std::string& key,
                World<D>& world, Random& rng, std::vector<Sphere<D>>& placed);
 
+// Adds a [[chains]] entry's chain (its nodes at the given points, split into elements) after
+// the chains already there; grains find it at the next list build.
+template <int D>
+void add_chain_spec(const ChainSpec& c, const SceneSettings& s, World<D>& world);
+
+// Adds a [[clumps]] entry's clump; returns its bounding sphere.
+template <int D>
+Sphere<D> add_clump_spec(const ClumpSpec& c, const SceneSettings& s, World<D>& world);
+
 }  // namespace geodem

@@ -13,6 +13,7 @@
 #include "io/particle_table.hpp"
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
+#include "io/step_loop.hpp"
 #include "measure/contact_network.hpp"
 #include "measure/displacement.hpp"
 #include "measure/measurements.hpp"
@@ -264,10 +265,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
                                      : st->steps > 0 ? stage_s0 + st->steps
                                                      : std::numeric_limits<std::uint64_t>::max();
       std::string reason = "end of duration";
-      while (w.step < end_step && w.time < end_time * (1.0 - 1e-12)) {
-        const bool last = w.step + 1 >= end_step || w.time + w.dt >= end_time * (1.0 - 1e-12);
-        w.measure_this_step = last || w.step % s.output.history_every == 0;
-        step(w);
+      std::uint64_t stepped = 0;
+      auto stop_met = [&] {
         if (w.measure_this_step) {
           record();
           unbalanced = unbalanced_force_ratio(w);
@@ -288,20 +287,31 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
                                stop.servo_tolerance * m.stress;
             if (ub_ok && ke_ok && servos_ok) {
               reason = "at rest (stop criteria met)";
-              break;
+              return true;
             }
           }
         }
-        if (s.output.vtk && s.output.vtk_every > 0 && w.step % s.output.vtk_every == 0)
-          vtk.write(w);
-        // A checkpoint closes a step whose outputs are all written.
-        if (interrupt_signal()) {
-          checkpoint();
-          status = "interrupted";
-          break;
-        }
-        if (checkpoints.due(w.step)) checkpoint();
-      }
+        return false;
+      };
+      step_loop(
+          w, stepped, [&] { return w.step < end_step && w.time < end_time * (1.0 - 1e-12); },
+          [&] {
+            const bool last = w.step + 1 >= end_step || w.time + w.dt >= end_time * (1.0 - 1e-12);
+            return last || w.step % s.output.history_every == 0;
+          },
+          stop_met,
+          [&] {
+            if (s.output.vtk && s.output.vtk_every > 0 && w.step % s.output.vtk_every == 0)
+              vtk.write(w);
+            // A checkpoint closes a step whose outputs are all written.
+            if (interrupt_signal()) {
+              checkpoint();
+              status = "interrupted";
+              return true;
+            }
+            if (checkpoints.due(w.step)) checkpoint();
+            return false;
+          });
       if (status != "completed") break;
       stop_reason = reason;
       if (st) {

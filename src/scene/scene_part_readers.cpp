@@ -79,6 +79,56 @@ CloudSpec read_cloud(TableReader& t, const ScenePartContext& c) {
   return cl;
 }
 
+ChainSpec read_chain(TableReader& t, const ScenePartContext& c, std::size_t index) {
+  const auto D = static_cast<std::size_t>(c.dimension);
+  ChainSpec ch;
+  ch.name = t.string("name", "chain" + std::to_string(index));
+  ch.material = read_material_name(t, "material", c);
+  ch.points = t.number_rows("points", D);
+  if (ch.points.size() < 2) t.fail("points", "a chain needs at least 2 points");
+  double nodes = 1.0;
+  ch.element_length = t.non_negative("element_length", 0.0);
+  for (std::size_t k = 0; k + 1 < ch.points.size(); ++k) {
+    double d2 = 0.0;
+    for (std::size_t j = 0; j < D; ++j)
+      d2 += (ch.points[k + 1][j] - ch.points[k][j]) * (ch.points[k + 1][j] - ch.points[k][j]);
+    if (d2 == 0.0) t.fail("points", "two consecutive points coincide");
+    if (ch.element_length > 0.0) nodes += std::ceil(std::sqrt(d2) / ch.element_length);
+  }
+  if (nodes > 1e7) t.fail("element_length", "more than 10 million nodes: too short");
+  ch.stiffness = t.positive("stiffness_J", 1e5);
+  ch.mass_per_length = t.positive("mass_per_length", 0.5);
+  ch.thickness = t.non_negative("thickness", 0.0);
+  ch.bending = t.non_negative("bending_stiffness", 0.0);
+  if (ch.bending > 0.0 && c.dimension != 2)
+    t.fail("bending_stiffness", "bending stiffness of chains is available in 2D only");
+  for (double h : t.numbers("held", {}, 0)) {
+    if (h != std::floor(h) || std::abs(h) > 1e9) t.fail("held", "expected node indices (integers)");
+    ch.held.push_back(static_cast<long long>(h));
+  }
+  if (t.has("velocity") && ch.held.empty())
+    t.fail("velocity", "a velocity is for held nodes: list them in 'held'");
+  ch.velocity = read_vector(t, "velocity", List(D, 0.0), c.dimension);
+  return ch;
+}
+
+ClumpSpec read_clump(TableReader& t, const ScenePartContext& c) {
+  const int D = c.dimension;
+  ClumpSpec cl;
+  cl.shape = t.string("template", "");
+  if (cl.shape.empty()) t.fail("template", "missing; expected a clump template name");
+  check_shape(t, "template", cl.shape, *c.templates);
+  cl.position = read_vector(t, "position", List(static_cast<std::size_t>(D), 0.0), D);
+  cl.velocity = read_vector(t, "velocity", List(static_cast<std::size_t>(D), 0.0), D);
+  cl.scale = t.positive("scale", 1.0);
+  cl.angle_deg = t.number("angle_deg", 0.0);
+  cl.axis = D == 3 ? read_vector(t, "axis", List{0.0, 0.0, 1.0}, D) : List{};
+  if (D == 3 && cl.axis[0] == 0.0 && cl.axis[1] == 0.0 && cl.axis[2] == 0.0)
+    t.fail("axis", "expected a non-zero rotation axis");
+  cl.material = read_material_name(t, "material", c);
+  return cl;
+}
+
 StopSpec read_stop(TableReader& t) {
   StopSpec s;
   s.unbalanced_below = t.non_negative("unbalanced_below", 0.0);

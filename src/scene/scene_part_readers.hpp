@@ -1,5 +1,6 @@
-// Readers of the parts of a scene that appear both at its top level and in its stages
-// (walls, clouds, boxes, friction), so that a stage takes the same keys with the same checks.
+// Readers of the parts of a scene that appear at its top level, in its stages and in the
+// Python module's edits (walls, clouds, chains, clumps, boxes, friction), so that each takes
+// the same keys with the same checks.
 #pragma once
 
 #include <set>
@@ -33,6 +34,12 @@ WallSpec read_wall(TableReader& t, const ScenePartContext& c, std::size_t index)
 
 // A [[clouds]] entry.
 CloudSpec read_cloud(TableReader& t, const ScenePartContext& c);
+
+// A [[chains]] entry; `index` numbers default names.
+ChainSpec read_chain(TableReader& t, const ScenePartContext& c, std::size_t index);
+
+// A [[clumps]] entry (the context's templates must be set).
+ClumpSpec read_clump(TableReader& t, const ScenePartContext& c);
 
 // A [stop] table: unbalanced_below, kinetic_below, min_time.
 StopSpec read_stop(TableReader& t);

@@ -58,7 +58,7 @@ Material read_material(TableReader& t, const std::string& fallback_name) {
   return m;
 }
 
-SceneSettings read_scene(const toml::table& root, const std::string& file) {
+SceneSettings read_scene(const toml::table& root, const std::string& file, bool from_python) {
   SceneSettings s;
   s.file = file;
   TableReader r(root, "", file, &s.resolved);
@@ -85,10 +85,10 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
               "the scene has [[stages]]: give each stage its own 'duration' or 'steps'");
     s.time.duration = t->non_negative("duration", 0.0);
     s.time.steps = static_cast<std::uint64_t>(t->integer("steps", 0, 0, (1LL << 50)));
-    if (!staged && s.time.duration == 0.0 && s.time.steps == 0)
+    if (!staged && !from_python && s.time.duration == 0.0 && s.time.steps == 0)
       t->fail("duration", "give the simulated time 'duration' (s) or a number of 'steps'");
     t->finish();
-  } else if (!staged) {
+  } else if (!staged && !from_python) {
     r.fail("time", "missing [time] table (duration or steps)");
   }
   if (auto t = r.table("stop")) {
@@ -163,44 +163,9 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
 
   std::set<std::string> chain_names;
   for (auto& t : r.tables("chains")) {
-    ChainSpec c;
-    c.name = t.string("name", "chain" + std::to_string(s.chains.size()));
-    if (!chain_names.insert(c.name).second) t.fail("name", "duplicate chain name '" + c.name + "'");
-    c.material = material_name(t, "material");
-    c.points = t.number_rows("points", D);
-    if (c.points.size() < 2) t.fail("points", "a chain needs at least 2 points");
-    for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
-      double d2 = 0.0;
-      for (std::size_t j = 0; j < D; ++j)
-        d2 += (c.points[k + 1][j] - c.points[k][j]) * (c.points[k + 1][j] - c.points[k][j]);
-      if (d2 == 0.0) t.fail("points", "two consecutive points coincide");
-    }
-    c.element_length = t.non_negative("element_length", 0.0);
-    c.stiffness = t.positive("stiffness_J", 1e5);
-    c.mass_per_length = t.positive("mass_per_length", 0.5);
-    c.thickness = t.non_negative("thickness", 0.0);
-    c.bending = t.non_negative("bending_stiffness", 0.0);
-    if (c.bending > 0.0 && s.dimension != 2)
-      t.fail("bending_stiffness", "bending stiffness of chains is available in 2D only");
-    for (double h : t.numbers("held", {}, 0)) {
-      if (h != std::floor(h) || std::abs(h) > 1e9)
-        t.fail("held", "expected node indices (integers)");
-      c.held.push_back(static_cast<long long>(h));
-    }
-    if (t.has("velocity") && c.held.empty())
-      t.fail("velocity", "a velocity is for held nodes: list them in 'held'");
-    c.velocity = vec(t, "velocity", zero);
-    if (c.element_length > 0.0) {
-      double nodes = 1.0;
-      for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
-        double d2 = 0.0;
-        for (std::size_t j = 0; j < D; ++j)
-          d2 += (c.points[k + 1][j] - c.points[k][j]) * (c.points[k + 1][j] - c.points[k][j]);
-        nodes += std::ceil(std::sqrt(d2) / c.element_length);
-      }
-      if (nodes > 1e7) t.fail("element_length", "more than 10 million nodes: too short");
-    }
-    s.chains.push_back(c);
+    s.chains.push_back(read_chain(t, parts, s.chains.size()));
+    if (!chain_names.insert(s.chains.back().name).second)
+      t.fail("name", "duplicate chain name '" + s.chains.back().name + "'");
     t.finish();
   }
 
@@ -220,20 +185,9 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
   }
 
   s.templates = read_templates(r, s.dimension);
+  parts.templates = &s.templates;
   for (auto& t : r.tables("clumps")) {
-    ClumpSpec c;
-    c.shape = t.string("template", "");
-    if (c.shape.empty()) t.fail("template", "missing; expected a clump template name");
-    check_shape(t, "template", c.shape, s.templates);
-    c.position = vec(t, "position", zero);
-    c.velocity = vec(t, "velocity", zero);
-    c.scale = t.positive("scale", 1.0);
-    c.angle_deg = t.number("angle_deg", 0.0);
-    c.axis = D == 3 ? vec(t, "axis", List{0.0, 0.0, 1.0}) : List{};
-    if (D == 3 && c.axis[0] == 0.0 && c.axis[1] == 0.0 && c.axis[2] == 0.0)
-      t.fail("axis", "expected a non-zero rotation axis");
-    c.material = material_name(t, "material");
-    s.clumps.push_back(c);
+    s.clumps.push_back(read_clump(t, parts));
     t.finish();
   }
   if (auto b = r.table("bonds")) {
@@ -242,7 +196,6 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
     b->finish();
   }
 
-  parts.templates = &s.templates;
   for (auto& t : r.tables("clouds")) {
     s.clouds.push_back(read_cloud(t, parts));
     t.finish();
@@ -305,7 +258,7 @@ SceneSettings read_scene(const toml::table& root, const std::string& file) {
               "grains in a stage ([[stages.clouds]]) instead of [[particles]], [[clumps]], "
               "[[clouds]], [[particle_files]] or [[chains]]");
     t->finish();
-  } else if (s.particles.empty() && s.clouds.empty() && s.particle_files.empty() &&
+  } else if (!from_python && s.particles.empty() && s.clouds.empty() && s.particle_files.empty() &&
              s.clumps.empty()) {
     r.fail("particles",
            "the scene has no grains: add [[particles]], [[clumps]] or [[clouds]], or start "

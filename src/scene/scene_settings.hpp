@@ -186,7 +186,9 @@ Material read_material(TableReader& t, const std::string& fallback_name);
 // Reads a [checkpoint] table (keys every_steps, every_seconds, keep).
 CheckpointSpec read_checkpoint_spec(TableReader& t);
 
-// Parses and checks a scene scenario from its root table.
-SceneSettings read_scene(const toml::table& root, const std::string& file);
+// Parses and checks a scene scenario from its root table. A scene built to be filled and
+// stepped from Python (from_python) may have no grains, no [time] table and no duration.
+SceneSettings read_scene(const toml::table& root, const std::string& file,
+                         bool from_python = false);
 
 }  // namespace geodem

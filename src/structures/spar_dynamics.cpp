@@ -119,8 +119,9 @@ double spar_min_mass_over_stiffness(const World<D>& world) {
         if (gap >= 0.0 || p.region != SparRegion::kOwned) continue;
         const PairLaw& law = world.pair_law(P.material[i], S.material[e]);
         const double r = P.radius[i], delta = -gap;
-        const NormalResult nr = normal_force(law, r, wall_partner_radius(law, r), 0.0, delta, 0.0);
-        const double kn = law.law == LawKind::kLinear ? law.linear_kn(r, r) : 1.5 * nr.fn / delta;
+        const double r2 = wall_partner_radius(law, r);
+        const NormalResult nr = normal_force(law, r, r2, 0.0, delta, 0.0);
+        const double kn = normal_stiffness(law, r, r2, nr.fn, delta);
         const Vec ks = Vec::Constant(std::max(kn, nr.kt));
         k[S.node_a[e]] += ks;
         k[S.node_b[e]] += ks;

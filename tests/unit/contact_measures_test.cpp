@@ -302,6 +302,41 @@ TEST(CriticalTimestep, HertzBelowTheContactPeriod) {
   EXPECT_LT(dt, std::sqrt(mass(w, 0) / k));
 }
 
+// The Hertz law's stored energy, 2/5 fn delta: two equal spheres meeting head on at v0 each,
+// undamped and frictionless, keep kinetic plus elastic energy through the collision; at the
+// deepest overlap the whole 1/2 m* (2 v0)^2 is elastic, and that overlap is Hertz's
+// delta_max = (15 m* (2 v0)^2 / (16 E* sqrt(R*)))^(2/5).
+TEST(ContactEnergy, HertzCollisionKeepsItsEnergy) {
+  const double r = 0.01, rho = 2800.0, young = 1e8, nu = 0.3, v0 = 0.5;
+  World<3> w;
+  add_material(w, hertz_material(young, nu, rho));
+  w.resolve_pair_laws();
+  w.particles.add(vec<3>(0.0, 0.0), r, rho, 0, vec<3>(v0, 0.0));
+  w.particles.add(vec<3>(2.0 * r + 1e-5, 0.0), r, rho, 0, vec<3>(-v0, 0.0));
+  w.auto_dt = false;
+  w.dt = 5e-8;  // the contact lasts about 8.5e-4 s
+  const double mstar = 0.5 * mass(w, 0), e0 = kinetic_energy(w);
+  const double estar = young / (2.0 * (1.0 - nu * nu));
+  const double delta_max =
+      std::pow(15.0 * mstar * 4.0 * v0 * v0 / (16.0 * estar * std::sqrt(0.5 * r)), 0.4);
+  double deepest = 0.0, stored = 0.0, worst = 0.0;
+  for (int k = 0; k < 20000; ++k) {
+    w.measure_this_step = true;
+    step(w);
+    const double delta = 2.0 * r - (w.particles.pos[1] - w.particles.pos[0]).norm();
+    const double e = kinetic_energy(w) + w.stats.elastic_energy;
+    worst = std::max(worst, std::abs(e - e0) / e0);
+    if (delta > deepest) deepest = delta, stored = w.stats.elastic_energy;
+  }
+  report("Hertz collision: largest |E - E0| / E0", worst);
+  report("Hertz collision: deepest overlap / delta_max - 1", deepest / delta_max - 1.0);
+  report("Hertz collision: elastic energy there / E0 - 1", stored / e0 - 1.0);
+  EXPECT_LT(worst, 1e-3);  // leapfrog: velocities half a step from positions
+  EXPECT_NEAR(deepest, delta_max, 1e-3 * delta_max);
+  EXPECT_NEAR(stored, e0, 1e-3 * e0);
+  EXPECT_GT(w.particles.vel[1][0], 0.0);  // bounced apart
+}
+
 // Fabric of lattices in closed form. A hexagonal disc patch: n_h horizontal contacts and n_d at
 // +-60 degrees give F_xx = (n_h + n_d / 4) / N, F_yy = 3 n_d / 4 / N (isotropic only in an
 // infinite lattice: the patch's edges lack diagonal contacts). A cubic sphere patch has
