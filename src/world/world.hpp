@@ -1,5 +1,6 @@
-// The whole simulated state: grains, walls, materials, contacts, time.
-// The time step (world/step.cpp) advances it; the engine never reads files.
+// The simulated world: its settings, its state (grains, walls, materials, contacts, time),
+// the step's scratch and its report. The time step (world/step.cpp) advances it; the engine
+// never reads files.
 #pragma once
 
 #include <array>
@@ -61,7 +62,7 @@ struct ContactStats {
   std::size_t contacts = 0;  // grain-grain contacts
   std::size_t wall_contacts = 0;
   std::size_t spar_contacts = 0;  // grain-spar element contacts
-  double elastic_energy = 0.0;    // normal springs only (exact for frictionless linear law)
+  double elastic_energy = 0.0;    // normal springs only (exact without friction and dashpots)
 };
 
 // A contribution computed in one slab of grains for a body outside it (a force and a
@@ -74,10 +75,43 @@ struct SlabCrossing {
   std::uint32_t body;
 };
 
+// The world is four parts, each with one owner; World joins them so that the engine's
+// loops read one object.
+//
+// Settings: how the step runs, set by a builder from a scenario (and by a stage or Python
+// between steps); the step reads them and never writes them.
 template <int D>
-struct World {
+struct WorldSettings {
   using Vec = typename Dim<D>::Vec;
+  Vec gravity = Vec::Zero();
+  double local_damping = 0.0;  // Cundall's non-viscous damping coefficient alpha
+  bool auto_dt = false;
+  double dt_safety = 0.8;
+  int dt_update_interval = 50;
+  // Integrate grain orientations. Off by default: a round grain's orientation does not
+  // enter its dynamics (forces depend on angular velocity only), and the update is about
+  // a tenth of a step's cost; whatever reads orientations (clumps, output) turns it on.
+  // Untracked, no orientation is stored (Particles::orient stays empty).
+  bool track_orientation = false;
+  double skin_factor = 0.4;  // skin as a fraction of the mean radius
+  // Every this many neighbour-list builds, grains are renumbered in cell order so
+  // that neighbours sit close in memory (0: never; grain indices then stay fixed).
+  int sort_interval = 0;
+  // Threads of the step's loops (base/parallel.hpp); results do not depend on it.
+  int threads = 1;
+  // Instability watch: an overlap beyond this fraction of the smaller radius stops
+  // the run (the contact force stage notes the first offender in the report).
+  double overlap_limit = 0.5;
+  // Sum each wall's contact dashpots (Wall::dashpot) in the force stage: only a servo that
+  // counts them asks (a square root per wall contact otherwise spared).
+  bool tally_wall_dashpots = false;
+};
 
+// State: what the step advances and a checkpoint saves (world/world_state.cpp): the bodies,
+// their materials and pair laws, the contacts with their history, the clock and the
+// neighbour list's counters, the controllers.
+template <int D>
+struct WorldState {
   Particles<D> particles;
   Clumps<D> clumps;  // rigid bodies made of grains of `particles`
   std::vector<Wall<D>> walls;
@@ -86,31 +120,10 @@ struct World {
   std::vector<PairLaw> pair_laws;  // materials x materials
   std::vector<PairLaw> wall_laws;  // materials x walls
   NeighbourList<D> nlist;
-  // Per list entry, how many member contacts of a clump carry the same collision (scratch
-  // derived from the list and the positions each step; see clumps/collision_shares.hpp).
-  CollisionShares collision_shares;
+  // Shared so that a world can be copied (a prepared sample reused for several tests).
+  std::vector<std::shared_ptr<Controller<D>>> controllers;
 
-  Vec gravity = Vec::Zero();
-  double local_damping = 0.0;  // Cundall's non-viscous damping coefficient alpha
   double dt = 0.0;
-  bool auto_dt = false;
-  double dt_safety = 0.8;
-  // Integrate grain orientations. Off by default: a round grain's orientation does not
-  // enter its dynamics (forces depend on angular velocity only), and the update is about
-  // a tenth of a step's cost; whatever reads orientations (clumps, output) turns it on.
-  // Untracked, no orientation is stored (Particles::orient stays empty).
-  bool track_orientation = false;
-  int dt_update_interval = 50;
-  double skin_factor = 0.4;  // skin as a fraction of the mean radius
-  // Every this many neighbour-list builds, grains are renumbered in cell order so
-  // that neighbours sit close in memory (0: never; grain indices then stay fixed).
-  int sort_interval = 0;
-  // Threads of the step's loops (base/parallel.hpp); results do not depend on it.
-  int threads = 1;
-  // Per-slab crossing contributions of the force stage and the automatic time step,
-  // kept between steps so that the step allocates nothing (scratch, not state).
-  mutable SlabCrossings<SlabCrossing<D>> slab_crossing;
-
   double time = 0.0;
   std::uint64_t step = 0;
   bool rebuild_needed = true;
@@ -120,27 +133,10 @@ struct World {
   // Growth of the largest radius since the last build (radius-growth compaction): gaps
   // close by at most twice this, so it counts like a displacement.
   double radius_growth = 0.0;
-
-  // Instability watch: an overlap beyond this fraction of the smaller radius stops
-  // the run (the contact force stage notes the first offender).
-  double overlap_limit = 0.5;
-  std::int64_t overlap_offender = -1, overlap_partner = -1;  // partner < 0: a wall (-1 - index)
-  double overlap_ratio = 0.0;
-
   // Rolling springs and bonds stored per contact (NeighbourList::extra); set by
   // update_contact_extras(), which must be called again if pair laws are edited.
   bool contact_extras = false;
   std::uint64_t broken_bonds = 0;  // bonds broken since the start
-
-  bool measure_this_step = false;
-  // Sum each wall's contact dashpots (Wall::dashpot) in the force stage: only a servo that
-  // counts them asks (a square root per wall contact otherwise spared).
-  bool tally_wall_dashpots = false;
-  ContactStats<D> stats;
-  std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};
-
-  // Shared so that a world can be copied (a prepared sample reused for several tests).
-  std::vector<std::shared_ptr<Controller<D>>> controllers;
 
   const PairLaw& pair_law(std::uint16_t a, std::uint16_t b) const {
     return pair_laws[a * materials.size() + b];
@@ -172,6 +168,34 @@ struct World {
     for (auto* table : {&pair_laws, &wall_laws})
       for (const auto& law : *table) contact_extras |= law.rolling() || law.cohesive();
   }
+};
+
+// Scratch: derived each step from the state, kept between steps only so that the step
+// allocates nothing; never read as a result.
+template <int D>
+struct StepScratch {
+  // Per list entry, how many member contacts of a clump carry the same collision (derived
+  // from the list and the positions each step; see clumps/collision_shares.hpp).
+  CollisionShares collision_shares;
+  // Per-slab crossing contributions of the force stage and the automatic time step.
+  mutable SlabCrossings<SlabCrossing<D>> slab_crossing;
+};
+
+// Report: what the last step measured, for the runner's records; the runner asks for the
+// costly part (measure_this_step) on the steps it records.
+template <int D>
+struct StepReport {
+  bool measure_this_step = false;
+  ContactStats<D> stats;
+  std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};
+  // The first overlap beyond overlap_limit (grain, partner: a grain, or -1 - wall index).
+  std::int64_t overlap_offender = -1, overlap_partner = -1;
+  double overlap_ratio = 0.0;
+};
+
+template <int D>
+struct World : WorldSettings<D>, WorldState<D>, StepScratch<D>, StepReport<D> {
+  using Vec = typename Dim<D>::Vec;
 };
 
 }  // namespace geodem
