@@ -15,6 +15,7 @@
 #include "kinds/scenario_kind.hpp"
 #include "scene/scene_settings.hpp"
 #include "scene_binding.hpp"
+#include "servo_binding.hpp"
 
 namespace py = pybind11;
 
@@ -104,6 +105,7 @@ PYBIND11_MODULE(geodem, m) {
 
   geodem::python::bind_scenes(m);
   geodem::python::bind_builders(m);
+  geodem::python::bind_servos(m);
   m.def(
       "load",
       [](const std::string& path) -> py::object {

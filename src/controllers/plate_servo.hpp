@@ -32,6 +32,12 @@ class PlateServo : public Controller<D> {
         integral_gain_(integral_gain),
         count_dashpots_(count_dashpots) {}
 
+  std::size_t wall() const { return wall_; }
+  bool wall_removed(std::size_t index) override {
+    if (index == wall_) return true;
+    if (wall_ > index) --wall_;
+    return false;
+  }
   double target() const { return target_; }
   void set_target(double t) { target_ = t; }
   // Pressure the grains exert on the plate (Pa).

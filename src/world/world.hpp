@@ -37,6 +37,9 @@ class Controller {
   virtual void apply(World<D>& world) = 0;
   virtual void save_state(StateWriter&) const {}
   virtual void load_state(StateReader&) {}
+  // Wall `index` is being removed (world/world_editing.hpp): a controller of that wall
+  // answers true and is dropped; one of a later wall renumbers it.
+  virtual bool wall_removed(std::size_t /*index*/) { return false; }
 };
 
 enum class Stage : int {

@@ -131,9 +131,11 @@ void add_wall(World<D>& w, const Wall<D>& wall) {
   w.rebuild_needed = true;
 }
 
-// Removes wall `index` with its contacts; the other walls keep theirs (renumbered).
+// Removes wall `index` with its contacts and the controllers that drive it; the other walls
+// keep theirs (renumbered).
 template <int D>
 void remove_wall(World<D>& w, std::size_t index) {
+  std::erase_if(w.controllers, [index](const auto& c) { return c->wall_removed(index); });
   const std::size_t nm = w.materials.size(), nw = w.walls.size();
   auto& L = w.nlist;
   if (!L.wall_start.empty()) {
