@@ -4,8 +4,8 @@
 
 #include <pybind11/pybind11.h>
 
-#include <string>
 #include <toml++/toml.h>
+#include <string>
 
 namespace geodem::python {
 
