@@ -14,4 +14,10 @@ namespace geodem::python {
 template <int D>
 pybind11::dict contact_arrays(const World<D>& world);
 
+// The grain-wall contacts touching at the last step: grain, wall (indices; the wall's name
+// is Scene.walls[wall]), normal (K, D) from the grain to the wall, overlap, normal_force (the
+// law's elastic part, on the wall), tangential_force (K, D) on the wall.
+template <int D>
+pybind11::dict wall_contact_arrays(const World<D>& world);
+
 }  // namespace geodem::python

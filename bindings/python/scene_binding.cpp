@@ -154,12 +154,40 @@ void bind(py::module_& m, const char* name) {
       .def_property_readonly(
           "radii",
           [](py::object self) { return view(self.cast<S&>().world().particles.radius, 0, self); })
+      .def_property_readonly("spins",
+                             [](py::object self) {
+                               return view(self.cast<S&>().world().particles.angvel, D == 2 ? 0 : 3,
+                                           self);
+                             })
+      .def_property_readonly("masses",
+                             [](S& s) {
+                               const auto& inv = s.world().particles.inv_mass;
+                               py::array_t<double> mass(static_cast<py::ssize_t>(inv.size()));
+                               for (std::size_t i = 0; i < inv.size(); ++i)
+                                 mass.mutable_data()[i] = 1.0 / inv[i];  // inf: a fixed grain
+                               return mass;
+                             })
+      .def_property_readonly("clump_ids",
+                             [](S& s) {
+                               const auto& P = s.world().particles;
+                               py::array_t<std::int64_t> c(static_cast<py::ssize_t>(P.size()));
+                               for (std::size_t i = 0; i < P.size(); ++i)
+                                 c.mutable_data()[i] = P.clump.empty() || P.clump[i] == kNoClump
+                                                           ? -1
+                                                           : static_cast<std::int64_t>(P.clump[i]);
+                               return c;
+                             })
       .def_property_readonly("ids",
                              [](S& s) {
                                const auto& id = s.world().particles.id;
                                return py::array_t<std::uint32_t>(
                                    static_cast<py::ssize_t>(id.size()), id.data());
                              })
+      .def(
+          "wall_contacts", [](S& s) { return wall_contact_arrays(s.world()); },
+          "The grain-wall contacts at the last step as arrays (copies): grain, wall (an index "
+          "of walls), normal (from the grain to the wall), overlap, normal_force (elastic "
+          "part, on the wall), tangential_force (on the wall).")
       .def(
           "contacts", [](S& s) { return contact_arrays(s.world()); },
           "The grain-grain contacts at the last step as arrays (copies): i, j, normal (from i to "

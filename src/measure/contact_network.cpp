@@ -51,6 +51,37 @@ ContactNetwork<D> contact_network(const World<D>& w) {
 }
 
 template <int D>
+WallContacts<D> wall_contacts(const World<D>& w) {
+  using Vec = typename Dim<D>::Vec;
+  const auto& P = w.particles;
+  const auto& L = w.nlist;
+  WallContacts<D> c;
+  for (std::size_t i = 0; i + 1 < L.wall_start.size(); ++i)
+    for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
+      // The geometry of the force stage: a plane's signed gap, a segment's closest point
+      // under the vertex-owner rule.
+      const auto& wall = w.walls[L.wall[k]];
+      Vec q;
+      if (!wall_closest(wall, P.pos[i], q)) continue;
+      const Vec d = q - P.pos[i];
+      const bool plane = wall.kind == WallKind::kPlane;
+      const double gap = plane ? (P.pos[i] - wall.point).dot(wall.normal) : d.norm();
+      const double r = P.radius[i], delta = r - gap;
+      if (delta <= 0.0 || (!plane && gap <= 0.0)) continue;
+      const Vec n = plane ? Vec(-wall.normal) : Vec(d / gap);
+      const PairLaw& law = w.wall_law(P.material[i], L.wall[k]);
+      c.grain.push_back(static_cast<std::uint32_t>(i));
+      c.wall.push_back(L.wall[k]);
+      c.normal.push_back(n);
+      c.overlap.push_back(delta);
+      c.normal_force.push_back(
+          normal_force(law, r, wall_partner_radius(law, r), 0.0, delta, 0.0).fn);
+      c.tangential_force.push_back(tangential_force<D>(L.wall_spring[k], n));
+    }
+  return c;
+}
+
+template <int D>
 typename Dim<D>::Tensor fabric_tensor(const World<D>& w) {
   using Vec = typename Dim<D>::Vec;
   typename Dim<D>::Tensor f = Dim<D>::Tensor::Zero();
@@ -72,6 +103,8 @@ double fabric_anisotropy(const typename Dim<D>::Tensor& fabric) {
 
 template ContactNetwork<2> contact_network<2>(const World<2>&);
 template ContactNetwork<3> contact_network<3>(const World<3>&);
+template WallContacts<2> wall_contacts<2>(const World<2>&);
+template WallContacts<3> wall_contacts<3>(const World<3>&);
 template Dim<2>::Tensor fabric_tensor<2>(const World<2>&);
 template Dim<3>::Tensor fabric_tensor<3>(const World<3>&);
 template double fabric_anisotropy<2>(const Dim<2>::Tensor&);

@@ -28,6 +28,22 @@ struct ContactNetwork {
 template <int D>
 ContactNetwork<D> contact_network(const World<D>& world);
 
+// The grain-wall contacts touching at the last step: grain index, wall index, the normal
+// from the grain to the wall, overlap, the law's elastic normal force (on the wall) and the
+// tangential force on the wall. The walls' resultants (Wall::force) add the dashpots.
+template <int D>
+struct WallContacts {
+  using Vec = typename Dim<D>::Vec;
+  std::vector<std::uint32_t> grain, wall;
+  std::vector<Vec> normal;
+  std::vector<double> overlap, normal_force;
+  std::vector<Vec> tangential_force;
+  std::size_t size() const { return grain.size(); }
+};
+
+template <int D>
+WallContacts<D> wall_contacts(const World<D>& world);
+
 // Fabric tensor F = <n (x) n> over the grain-grain contacts touching (trace 1; I/D when
 // isotropic); zero without contacts.
 template <int D>

@@ -32,6 +32,9 @@ def test_a_grain_added_to_an_empty_world_falls_and_rests_with_its_weight_on_the_
     assert scene.add_walls({"name": "floor", "normal": [0.0, 1.0]}) == ["floor"]
     r, y0 = 0.01, 0.05
     scene.add_grains(np.array([[0.0, y0]]), np.array([r]))
+    assert scene.masses[0] == pytest.approx(RHO * math.pi * r * r, rel=1e-12)
+    assert list(scene.clump_ids) == [-1]
+    assert scene.spins.shape == (1,) and not scene.spins.flags.owndata
     scene.run(until=0.05, every=1)  # falls 12 mm of the 40 it has
     t, dt = scene.time, scene.dt
     assert y0 - scene.positions[0][1] == pytest.approx(0.5 * G * (t * t + t * dt), rel=1e-9)
@@ -56,6 +59,9 @@ def test_a_clump_added_from_python_falls_rigid_and_rests_with_its_weight():
     scene.run(until=0.05, every=10)
     x = scene.positions
     assert np.linalg.norm(x[1] - x[0]) == pytest.approx(2.0 * r, rel=1e-12)
+    ids = scene.clump_ids
+    assert ids[0] == ids[1] >= 0
+    assert np.all(scene.spins == 0.0)  # a free fall turns nothing
     centre = 0.5 * (x[0] + x[1])
     t, dt = scene.time, scene.dt
     assert centre[0] == start[0]

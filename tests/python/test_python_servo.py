@@ -67,3 +67,20 @@ def test_a_servo_needs_an_area():
         scene.set_servo("left", stress=1e3, max_speed=0.01)
     with pytest.raises(KeyError):
         scene.set_servo("roof", stress=1e3, max_speed=0.01)
+
+
+def test_wall_contacts_add_up_to_the_wall_forces_at_rest():
+    """At rest (no dashpot left), the elastic forces of each wall's contacts, fn n + ft on
+    the wall, add up to the force the step sums on it."""
+    scene = geodem.scene(box_of_discs())
+    scene.set_servo("plate", stress=10e3, max_speed=0.2)
+    scene.run(until=1.0, every=1000)
+    c = scene.wall_contacts()
+    assert len(c["grain"]) > 0 and np.all(c["overlap"] > 0.0)
+    total = c["normal_force"][:, None] * c["normal"] + c["tangential_force"]
+    for k, name in enumerate(scene.walls):
+        mine = c["wall"] == k
+        assert total[mine].sum(axis=0) == pytest.approx(scene.wall_force(name), rel=1e-6,
+                                                        abs=1e-9)
+    floor = c["wall"] == scene.walls.index("floor")
+    assert np.allclose(c["normal"][floor], [0.0, -1.0])
