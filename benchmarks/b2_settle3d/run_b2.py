@@ -39,8 +39,14 @@ def time_v(cmd, cwd=None):
 def run_geodem(exe, n, dim, out, settle, dense, threads=1):
     subprocess.run([sys.executable, str(HERE / "geodem_scenario.py"), str(n), str(out), "--dim", str(dim),
                     "--settle", str(settle), "--dense", str(dense)], check=True)
-    res = out / f"geodem{dim}d_t{threads}"
-    wall, rss, _ = time_v([str(exe), "run", str(out / f"settle{dim}d.toml"), "--out", str(res), "--overwrite", "--quiet",
+    return time_geodem(exe, out / f"settle{dim}d.toml", out / f"geodem{dim}d_t{threads}", n, dim, settle,
+                       threads)
+
+
+def time_geodem(exe, scenario, res, n, dim, settle, threads=1):
+    """Runs a B2-style scenario (settle, then the dense bed) and reads its speeds per phase from
+    history.csv's wall-clock column."""
+    wall, rss, _ = time_v([str(exe), "run", str(scenario), "--out", str(res), "--overwrite", "--quiet",
                            "--threads", str(threads)])
     rows = list(csv.DictReader(open(res / "history.csv")))
     at = {int(r["step"]): r for r in rows}
