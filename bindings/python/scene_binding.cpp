@@ -295,15 +295,28 @@ void bind(py::module_& m, const char* name) {
                   mat = static_cast<std::uint16_t>(k), found = true;
               if (!found) throw py::key_error("no material '" + material + "'");
             }
+            // Overlaps the step would stop at are an input error naming the grains, as for
+            // the scenario's [[particles]].
+            std::vector<Sphere<D>> all;
+            std::vector<std::string> source;
+            for (std::size_t i = 0; i < w.particles.size(); ++i) {
+              all.push_back({w.particles.pos[i], w.particles.radius[i]});
+              source.push_back("the grain of id " + std::to_string(w.particles.id[i]));
+            }
             for (py::ssize_t i = 0; i < n; ++i) {
               const double r = radii.data()[i];
               if (!(r > 0.0)) throw py::value_error("radii must be positive");
-              Vec x, v = Vec::Zero();
-              for (int k = 0; k < D; ++k) {
-                x[k] = positions.data()[i * D + k];
-                if (!velocities.is_none()) v[k] = vel.data()[i * D + k];
-              }
-              w.particles.add(x, r, w.materials[mat].density, mat, v);
+              Vec x;
+              for (int k = 0; k < D; ++k) x[k] = positions.data()[i * D + k];
+              all.push_back({x, r});
+              source.push_back("positions[" + std::to_string(i) + "]");
+            }
+            reject_input_overlaps<D>(all, source, w.overlap_limit, "<python>");
+            for (py::ssize_t i = 0; i < n; ++i) {
+              Vec v = Vec::Zero();
+              for (int k = 0; k < D && !velocities.is_none(); ++k) v[k] = vel.data()[i * D + k];
+              const auto& g = all[w.particles.size()];
+              w.particles.add(g.centre, g.radius, w.materials[mat].density, mat, v);
             }
             if (!w.nlist.start.empty()) {  // the new grains start with empty rows
               for (auto* start : {&w.nlist.start, &w.nlist.wall_start, &w.nlist.spar_start})
@@ -316,7 +329,8 @@ void bind(py::module_& m, const char* name) {
           py::arg("positions"), py::arg("radii"), py::arg("velocities") = py::none(),
           py::arg("material") = "",
           "Adds grains at the given positions (N, D) with radii (N) and optional velocities, "
-          "of a material of the scenario (default: the first). They are placed as given. "
+          "of a material of the scenario (default: the first). They are placed as given; an "
+          "overlap beyond the scene's max_overlap is a geodem.InputError naming the grains. "
           "Returns how many were added.")
       .def(
           "fabric",

@@ -36,9 +36,8 @@ std::size_t count_data_rows(const std::string& path) {
   return rows;
 }
 
-// Grains given one by one (particles, particle files) that overlap by more than the
-// overlap the step stops at (`limit` x the smaller radius) are an input error naming both,
-// not an instability at step 0. A cell grid of the largest diameter: O(N).
+}  // namespace
+
 template <int D>
 void reject_input_overlaps(const std::vector<Sphere<D>>& g, const std::vector<std::string>& source,
                            double limit, const std::string& scenario) {
@@ -75,6 +74,8 @@ void reject_input_overlaps(const std::vector<Sphere<D>>& g, const std::vector<st
     cells[key(g[a].centre, 0, 0, 0)].push_back(a);
   }
 }
+
+namespace {
 
 // Reads whitespace- or comma-separated rows; '#' starts a comment.
 template <int D, typename Add>
@@ -350,6 +351,10 @@ void build_world(const SceneSettings& s, World<D>& world) {
 }
 
 template void build_world<2>(const SceneSettings&, World<2>&);
+template void reject_input_overlaps<2>(const std::vector<Sphere<2>>&,
+                                       const std::vector<std::string>&, double, const std::string&);
+template void reject_input_overlaps<3>(const std::vector<Sphere<3>>&,
+                                       const std::vector<std::string>&, double, const std::string&);
 template void add_chain_spec<2>(const ChainSpec&, const SceneSettings&, World<2>&);
 template void add_chain_spec<3>(const ChainSpec&, const SceneSettings&, World<3>&);
 template Sphere<2> add_clump_spec<2>(const ClumpSpec&, const SceneSettings&, World<2>&);

@@ -136,3 +136,14 @@ def test_bad_parts_raise_input_errors_naming_the_key():
     with pytest.raises(geodem.InputError, match="cohesive"):
         geodem.scene(plain).create_bonds()
     assert scene.walls == ["floor"]  # nothing added by the calls that failed
+
+
+def test_grains_added_on_top_of_others_are_an_input_error():
+    """An overlap the step would stop at (half the smaller radius by default) is refused at
+    the call, naming both grains; nothing is added."""
+    scene = geodem.scene(empty())
+    scene.add_grains(np.array([[0.0, 0.0]]), np.array([0.01]))
+    with pytest.raises(geodem.InputError, match=r"positions\[1\].*overlaps.*id 0"):
+        scene.add_grains(np.array([[0.5, 0.0], [0.005, 0.0]]), np.array([0.01, 0.01]))
+    assert scene.count == 1
+    assert scene.add_grains(np.array([[0.019, 0.0]]), np.array([0.01])) == 1  # 5 %: a contact
