@@ -116,9 +116,7 @@ void bind_builder(py::module_& m, const char* name) {
             const ScenePartContext c = context_of(s.settings());
             std::vector<CloudSpec> specs;
             read_each(spec, "clouds", [&](TableReader& t) { specs.push_back(read_cloud(t, c)); });
-            std::vector<Sphere<D>> placed;
-            for (std::size_t i = 0; i < w.particles.size(); ++i)
-              placed.push_back({w.particles.pos[i], w.particles.radius[i]});
+            std::vector<Sphere<D>> placed = spheres_of<D>(w.particles);
             const std::size_t before = w.particles.size();
             // A stream of its own per call, so that two clouds do not repeat each other (the
             // first one the scenario's own when it has no clouds: the same grains).

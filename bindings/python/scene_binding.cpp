@@ -297,12 +297,10 @@ void bind(py::module_& m, const char* name) {
             }
             // Overlaps the step would stop at are an input error naming the grains, as for
             // the scenario's [[particles]].
-            std::vector<Sphere<D>> all;
+            std::vector<Sphere<D>> all = spheres_of<D>(w.particles);
             std::vector<std::string> source;
-            for (std::size_t i = 0; i < w.particles.size(); ++i) {
-              all.push_back({w.particles.pos[i], w.particles.radius[i]});
+            for (std::size_t i = 0; i < w.particles.size(); ++i)
               source.push_back("the grain of id " + std::to_string(w.particles.id[i]));
-            }
             for (py::ssize_t i = 0; i < n; ++i) {
               const double r = radii.data()[i];
               if (!(r > 0.0)) throw py::value_error("radii must be positive");

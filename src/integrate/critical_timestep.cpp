@@ -149,16 +149,9 @@ double critical_timestep(const World<D>& world) {
             add(body(j), nrm, kn, nr.kt, lever(j, -nrm), kr, ktw);
           }
           for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
-            const auto& w = world.walls[L.wall[k]];
-            Vec q;
-            if (!wall_closest(w, P.pos[i], q)) continue;
-            const Vec d = q - P.pos[i];
-            const double gap =
-                w.kind == WallKind::kPlane ? (P.pos[i] - w.point).dot(w.normal) : d.norm();
-            const double delta = P.radius[i] - gap;
-            // A centre exactly on a segment has no normal: the force stage skips it too.
-            if (delta <= 0.0 || (w.kind != WallKind::kPlane && gap <= 0.0)) continue;
-            const Vec nrm = w.kind == WallKind::kPlane ? Vec(-w.normal) : Vec(d / gap);
+            Vec nrm;
+            double delta;
+            if (!wall_overlap(world.walls[L.wall[k]], P.pos[i], P.radius[i], nrm, delta)) continue;
             const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
             const double r2 = wall_partner_radius(law, P.radius[i]);
             const NormalResult nr = normal_force(law, P.radius[i], r2, 0.0, delta, 0.0);

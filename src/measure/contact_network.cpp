@@ -58,17 +58,10 @@ WallContacts<D> wall_contacts(const World<D>& w) {
   WallContacts<D> c;
   for (std::size_t i = 0; i + 1 < L.wall_start.size(); ++i)
     for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
-      // The geometry of the force stage: a plane's signed gap, a segment's closest point
-      // under the vertex-owner rule.
-      const auto& wall = w.walls[L.wall[k]];
-      Vec q;
-      if (!wall_closest(wall, P.pos[i], q)) continue;
-      const Vec d = q - P.pos[i];
-      const bool plane = wall.kind == WallKind::kPlane;
-      const double gap = plane ? (P.pos[i] - wall.point).dot(wall.normal) : d.norm();
-      const double r = P.radius[i], delta = r - gap;
-      if (delta <= 0.0 || (!plane && gap <= 0.0)) continue;
-      const Vec n = plane ? Vec(-wall.normal) : Vec(d / gap);
+      const double r = P.radius[i];
+      Vec n;
+      double delta;
+      if (!wall_overlap(w.walls[L.wall[k]], P.pos[i], r, n, delta)) continue;
       const PairLaw& law = w.wall_law(P.material[i], L.wall[k]);
       c.grain.push_back(static_cast<std::uint32_t>(i));
       c.wall.push_back(L.wall[k]);

@@ -15,6 +15,15 @@ struct Sphere {
   double radius;
 };
 
+// The grains of `grains` (Particles) as spheres: what grains added among them must clear.
+template <int D, class Grains>
+std::vector<Sphere<D>> spheres_of(const Grains& grains) {
+  std::vector<Sphere<D>> s;
+  s.reserve(grains.size());
+  for (std::size_t i = 0; i < grains.size(); ++i) s.push_back({grains.pos[i], grains.radius[i]});
+  return s;
+}
+
 // Radii uniform in mean*(1 +- fuzz). Grains stay inside [lo, hi] and do not overlap
 // each other nor `existing`. Throws std::runtime_error when the box is too full.
 template <int D>

@@ -63,9 +63,7 @@ void start_stage(const SceneSettings& s, std::size_t k, World<D>& w, bool replay
                     ContactHistory::kKeep);
     }
     if (!st.clouds.empty()) {
-      std::vector<Sphere<D>> placed;
-      for (std::size_t i = 0; i < w.particles.size(); ++i)
-        placed.push_back({w.particles.pos[i], w.particles.radius[i]});
+      std::vector<Sphere<D>> placed = spheres_of<D>(w.particles);
       Random rng(s.seed + 7919 * (k + 1));  // a stream of its own per stage
       for (std::size_t c = 0; c < st.clouds.size(); ++c)
         add_cloud(s, st.clouds[c], "stages." + std::to_string(k) + ".clouds." + std::to_string(c),

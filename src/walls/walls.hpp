@@ -61,4 +61,23 @@ inline bool wall_closest(const Wall<D>& w, const typename Dim<D>::Vec& x,
   return true;
 }
 
+// A sphere (centre x, radius r) against a wall as the force stage meets it: the unit normal
+// n from the centre to the wall and the overlap delta > 0; false when they do not touch, when
+// the vertex-owner rule gives the contact to the next segment, or when the centre lies on a
+// segment (no normal).
+template <int D>
+inline bool wall_overlap(const Wall<D>& w, const typename Dim<D>::Vec& x, double r,
+                         typename Dim<D>::Vec& n, double& delta) {
+  using Vec = typename Dim<D>::Vec;
+  Vec q;
+  if (!wall_closest(w, x, q)) return false;
+  const Vec d = q - x;
+  const bool plane = w.kind == WallKind::kPlane;
+  const double gap = plane ? (x - w.point).dot(w.normal) : d.norm();
+  delta = r - gap;
+  if (delta <= 0.0 || (!plane && gap <= 0.0)) return false;
+  n = plane ? Vec(-w.normal) : Vec(d / gap);
+  return true;
+}
+
 }  // namespace geodem
