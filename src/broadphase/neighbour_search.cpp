@@ -1,6 +1,7 @@
 #include "broadphase/neighbour_search.hpp"
 
 #include "base/parallel.hpp"
+#include "broadphase/periodic_search.hpp"
 #include "clumps/clump_dynamics.hpp"
 #include "structures/spar_geometry.hpp"
 
@@ -220,13 +221,17 @@ void build_neighbour_list(World<D>& world) {
     L.wall_spring.clear();
     L.extra.clear();
     L.wall_extra.clear();
+    L.image.clear();
     L.spar_start.assign(world.spars.empty() ? 0 : n + 1, 0);
     L.spar.clear();
     L.spar_spring.clear();
   };
   reset_rows();
 
-  if (n > 0) {
+  if (world.cell.periodic && n > 0) {
+    wrap_into_cell(world);
+    list_periodic_pairs(world);
+  } else if (n > 0) {
     // Grid bounds: the grains' bounding box; far outliers are clamped to the edge cells.
     Vec lo = P.pos[0], hi = P.pos[0];
     double rmax = 0.0;
@@ -422,6 +427,7 @@ void build_neighbour_list(World<D>& world) {
   }
 
   P.pos_at_build = P.pos;
+  world.cell.h_at_build = world.cell.h;
   for (auto& w : world.walls) w.displacement = Vec::Zero();
   world.spars.pos_at_build = world.spars.pos;
   world.disp_bound = 0.0;

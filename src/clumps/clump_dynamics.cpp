@@ -172,7 +172,11 @@ double integrate_clumps(World<D>& world) {
     if (alpha > 0.0)
       for (int k = 0; k < D; ++k) a[k] = damped(a[k], C.vel[c][k] + 0.5 * dt * a[k], alpha);
     C.vel[c] += a * dt;
-    C.pos[c] += C.vel[c] * dt;
+    if (world.cell.periodic) {  // the affine field of the periodic cell carries the centre
+      C.pos[c] += (C.vel[c] + world.cell.vel_grad * C.pos[c]) * dt;
+    } else {
+      C.pos[c] += C.vel[c] * dt;
+    }
     if constexpr (D == 2) {
       double aw = C.torque[c] * C.inv_inertia[c];
       if (alpha > 0.0) aw = damped(aw, C.angvel[c] + 0.5 * dt * aw, alpha);

@@ -112,7 +112,7 @@ void update_collision_shares(World<D>& world) {
   count_groups(S.pair_groups, S.pair, [&](std::uint32_t i, std::uint32_t k) {
     const std::uint32_t j = L.other[k];
     const double rs = P.radius[i] + P.radius[j];
-    return (P.pos[j] - P.pos[i]).squaredNorm() < rs * rs || (extras && L.extra[k].bonded);
+    return world.branch(i, j, k).squaredNorm() < rs * rs || (extras && L.extra[k].bonded);
   });
   count_groups(S.wall_groups, S.wall, [&](std::uint32_t i, std::uint32_t k) {
     // As the force stage decides: a plane's signed gap, a segment's distance.

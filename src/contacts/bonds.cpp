@@ -20,7 +20,7 @@ std::size_t create_bonds(World<D>& world, double gap_tolerance) {
     for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
       const std::uint32_t j = L.other[k];
       if (!world.pair_law(P.material[i], P.material[j]).cohesive() || L.extra[k].bonded) continue;
-      const double gap = (P.pos[j] - P.pos[i]).norm() - P.radius[i] - P.radius[j];
+      const double gap = world.branch(i, j, k).norm() - P.radius[i] - P.radius[j];
       // 1e-12: grains placed touching may be apart by rounding.
       if (gap > (gap_tolerance + 1e-12) * std::min(P.radius[i], P.radius[j])) continue;
       L.extra[k].bonded = 1;

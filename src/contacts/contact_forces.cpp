@@ -35,6 +35,8 @@ struct SlabTally {
   std::vector<Vec> wall_force;  // per wall
   std::vector<double> wall_stiffness;
   std::vector<double> wall_dashpot;
+  Vec cell_stiffness = Vec::Zero();  // periodic cell: sum of kn (d_k n_k)^2
+  typename Dim<D>::Tensor cell_fabric = Dim<D>::Tensor::Zero();  // periodic cell: sum of d f^T
 
   void note_overlap(std::size_t i, std::int64_t partner, double ratio) {
     if (overlap_offender >= 0) return;
@@ -57,7 +59,7 @@ void add_stats(ContactStats<D>& a, const ContactStats<D>& b) {
 // Grain-grain contacts of the rows [first, last) (one slab). `Extras`: the contacts carry rolling
 // springs and bond states (a separate instantiation, so that plain frictional packings pay nothing
 // for them).
-template <int D, bool Measure, bool Extras>
+template <int D, bool Measure, bool Extras, bool Periodic>
 void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D>& t,
                typename SlabCrossings<SlabCrossing<D>>::Writer crossing) {
   using Vec = typename Dim<D>::Vec;
@@ -84,6 +86,8 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
   // With clumps: how many contacts share each collision (their dashpots split the mass).
   const std::uint16_t* share =
       world.collision_shares.pair.empty() ? nullptr : world.collision_shares.pair.data();
+  const CellImage* image = Periodic ? L.image.data() : nullptr;
+  const PeriodicCell<D>& cell = world.cell;
   for (std::size_t i = first; i < last; ++i) {
     const std::uint32_t b = start[i], e = start[i + 1];
     if (b == e) continue;
@@ -96,7 +100,10 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
     Rot ti = Dim<D>::zero_rot();
     for (std::uint32_t k = b; k < e; ++k) {
       const std::uint32_t j = other[k];
-      const Vec d = pos[j] - xi;
+      Vec d = pos[j] - xi;
+      if constexpr (Periodic) {
+        if (!image[k].home()) d += cell.shift(image[k]);
+      }
       const double rj = radius[j];
       const double rs = ri + rj;
       const double dist2 = d.squaredNorm();
@@ -118,8 +125,10 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
         t.note_overlap(i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
       const double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;  // centre-to-contact lengths
       // Surface velocities at the contact point.
-      const Vec vrel =
-          (vel[j] - Dim<D>::cross(angvel[j], aj * nrm)) - (vi + Dim<D>::cross(wi, ai * nrm));
+      Vec vrel = (vel[j] - Dim<D>::cross(angvel[j], aj * nrm)) - (vi + Dim<D>::cross(wi, ai * nrm));
+      // Velocities are relative to the cell's affine field: the centres' relative velocity
+      // gains L d.
+      if constexpr (Periodic) vrel += cell.vel_grad * d;
       const PairLaw& law = laws[material[j]];
       double fn;
       Vec f;
@@ -158,6 +167,11 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
       } else {
         crossing.push({f, tj, j});
       }
+      if constexpr (Periodic) {
+        t.cell_fabric += d * f.transpose();
+        t.cell_stiffness +=
+            normal_stiffness(law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
+      }
       if constexpr (Measure) {
         t.stats.fabric_stress += d * f.transpose();
         t.stats.sum_force += f.norm();
@@ -170,14 +184,15 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
   }
 }
 
-template <int D, bool Measure, bool Extras>
+template <int D, bool Measure, bool Extras, bool Periodic>
 void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   SlabTally<D>* tally = tallies.data();
   auto& crossing = world.slab_crossing;
   crossing.prepare(world.particles.size());
   for_slabs(world.particles.size(), world.threads,
             [&](std::size_t s, std::size_t first, std::size_t last) {
-              pair_rows<D, Measure, Extras>(world, first, last, tally[s], crossing.slab(s));
+              pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally[s],
+                                                      crossing.slab(s));
             });
   // The crossing forces, each grain's in slab order.
   auto& P = world.particles;
@@ -285,22 +300,29 @@ void compute_contact_forces(World<D>& world) {
     t.wall_force.assign(nw, Vec::Zero());
     t.wall_stiffness.assign(nw, 0.0);
     t.wall_dashpot.assign(nw, 0.0);
+    t.cell_stiffness = Vec::Zero();
+    t.cell_fabric.setZero();
   }
+  // One instantiation per combination, so that a plain packing pays for no option.
+  auto run = [&]<bool Measure, bool Extras>() {
+    if (world.cell.periodic) {
+      grain_pairs<D, Measure, Extras, true>(world, tallies);
+    } else {
+      grain_pairs<D, Measure, Extras, false>(world, tallies);
+    }
+    grain_walls<D, Measure, Extras>(world, tallies);
+  };
   const bool extras = world.contact_extras;
   if (world.measure_this_step) {
     if (extras) {
-      grain_pairs<D, true, true>(world, tallies);
-      grain_walls<D, true, true>(world, tallies);
+      run.template operator()<true, true>();
     } else {
-      grain_pairs<D, true, false>(world, tallies);
-      grain_walls<D, true, false>(world, tallies);
+      run.template operator()<true, false>();
     }
   } else if (extras) {
-    grain_pairs<D, false, true>(world, tallies);
-    grain_walls<D, false, true>(world, tallies);
+    run.template operator()<false, true>();
   } else {
-    grain_pairs<D, false, false>(world, tallies);
-    grain_walls<D, false, false>(world, tallies);
+    run.template operator()<false, false>();
   }
   // The slabs' sums, in slab order.
   for (auto& w : world.walls) {
@@ -309,10 +331,14 @@ void compute_contact_forces(World<D>& world) {
     w.dashpot = 0.0;
   }
   if (world.measure_this_step) world.stats = ContactStats<D>{};
+  world.cell_stiffness = Vec::Zero();
+  world.cell_fabric.setZero();
   for (std::size_t s = 0; s < slabs; ++s) {
     const auto& t = tallies[s];
     if (world.measure_this_step) add_stats(world.stats, t.stats);
     world.broken_bonds += t.broken_bonds;
+    world.cell_stiffness += t.cell_stiffness;
+    world.cell_fabric += t.cell_fabric;
     if (world.overlap_offender < 0 && t.overlap_offender >= 0) {
       world.overlap_offender = t.overlap_offender;
       world.overlap_partner = t.overlap_partner;

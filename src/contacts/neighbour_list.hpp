@@ -6,6 +6,7 @@
 // old rows into the new ones pair by pair.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <type_traits>
 #include <vector>
@@ -59,6 +60,17 @@ struct ContactExtra {
   std::uint8_t bonded = 0;                         // cohesive bond intact
 };
 
+// In a periodic cell (world/periodic_cell.hpp): which image of a listed partner the pair is with (m
+// per edge vector, -1, 0, 1).
+struct CellImage {
+  std::array<std::int8_t, 3> m{0, 0, 0};
+  bool home() const { return m[0] == 0 && m[1] == 0 && m[2] == 0; }
+  CellImage reversed() const {
+    return {{static_cast<std::int8_t>(-m[0]), static_cast<std::int8_t>(-m[1]),
+             static_cast<std::int8_t>(-m[2])}};
+  }
+};
+
 template <int D>
 struct NeighbourList {
   using Spring = TangentSpring<D>;
@@ -73,6 +85,8 @@ struct NeighbourList {
   // Parallel to `spring` / `wall_spring` when the world has contact extras, else empty.
   std::vector<ContactExtra<D>> extra;
   std::vector<ContactExtra<D>> wall_extra;
+  // Parallel to `other` in a periodic cell, else empty.
+  std::vector<CellImage> image;
   // Grain-spar element pairs (structures/), same layout; rows sorted by element.
   std::vector<std::uint32_t> spar_start;
   std::vector<std::uint32_t> spar;
@@ -86,7 +100,7 @@ struct NeighbourList {
   void swap_rows(NeighbourList& o) {
     start.swap(o.start), other.swap(o.other), spring.swap(o.spring);
     wall_start.swap(o.wall_start), wall.swap(o.wall), wall_spring.swap(o.wall_spring);
-    extra.swap(o.extra), wall_extra.swap(o.wall_extra);
+    extra.swap(o.extra), wall_extra.swap(o.wall_extra), image.swap(o.image);
     spar_start.swap(o.spar_start), spar.swap(o.spar), spar_spring.swap(o.spar_spring);
   }
   std::size_t bytes() const {
@@ -94,7 +108,7 @@ struct NeighbourList {
            wall_start.capacity() * 4 + wall.capacity() * 4 +
            wall_spring.capacity() * sizeof(Spring) +
            (extra.capacity() + wall_extra.capacity()) * sizeof(ContactExtra<D>) +
-           spar_start.capacity() * 4 + spar.capacity() * 4 +
+           image.capacity() * sizeof(CellImage) + spar_start.capacity() * 4 + spar.capacity() * 4 +
            spar_spring.capacity() * sizeof(Spring);
   }
 };

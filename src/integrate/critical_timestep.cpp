@@ -132,7 +132,7 @@ double critical_timestep(const World<D>& world) {
           for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
             const std::uint32_t j = L.other[k];
             const double rs = P.radius[i] + P.radius[j];
-            const Vec d = P.pos[j] - P.pos[i];
+            const Vec d = world.branch(i, j, k);
             const double dist = d.norm();
             // A bonded pair pulled apart still has its springs.
             const bool bonded = extras && L.extra[k].bonded;

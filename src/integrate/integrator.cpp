@@ -44,6 +44,9 @@ void integrate(World<D>& world) {
   if (world.track_orientation && P.orient.size() != n) P.orient.resize(n, Dim<D>::identity());
   auto* __restrict orient = P.orient.data();
   const bool track = world.track_orientation;
+  // In a periodic cell, velocities are relative to the cell's affine field L x.
+  const bool periodic = world.cell.periodic;
+  const typename Dim<D>::Tensor L = world.cell.vel_grad;
   double vmax2 = 0.0;  // a maximum: the same in any order
   const auto nn = static_cast<std::ptrdiff_t>(n);
 #pragma omp parallel for num_threads(world.threads) schedule(static) \
@@ -61,13 +64,19 @@ void integrate(World<D>& world) {
       vel[i] += a * dt;
       angvel[i] += aw * dt;
     }
-    pos[i] += vel[i] * dt;
+    if (periodic) {
+      pos[i] += (vel[i] + L * pos[i]) * dt;
+    } else {
+      pos[i] += vel[i] * dt;
+    }
     if (track) Dim<D>::rotate(orient[i], angvel[i], dt);
     vmax2 = std::max(vmax2, vel[i].squaredNorm());
   }
   vmax2 = std::max(vmax2, integrate_clumps(world));
   // Bound on how far any grain moved since the neighbour list was checked (spar nodes
   // are checked exactly, like walls: they are few).
+  // In a periodic cell the displacement from the affine motion, u, grows at v + L u.
+  if (periodic) world.disp_bound += L.norm() * world.disp_bound * dt;
   world.disp_bound += std::sqrt(vmax2) * dt;
   if (!world.spars.empty()) integrate_spar_nodes(world);
 }

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 constexpr char kMagic[8] = {'G', 'E', 'O', 'D', 'E', 'M', 'C', 'K'};
 // 2: 2D tangential springs are scalars; 3: one integral sum per stress servo.
-constexpr std::uint32_t kFormatVersion = 3;
+constexpr std::uint32_t kFormatVersion = 4;
 // Byte order and the sizes the archive relies on, in one word.
 constexpr std::uint32_t kMachineMark =
     0x01020000u | static_cast<std::uint32_t>(sizeof(void*) << 8) | sizeof(double);

@@ -19,7 +19,7 @@ void each_contact(const World<D>& w, F&& f) {
   for (std::size_t i = 0; i + 1 < L.start.size(); ++i)
     for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
       const std::uint32_t j = L.other[k];
-      const Vec d = P.pos[j] - P.pos[i];
+      const Vec d = w.branch(i, j, k);
       const double dist = d.norm(), rs = P.radius[i] + P.radius[j];
       const bool bond = extras && L.extra[k].bonded;
       if ((dist >= rs && !bond) || dist <= 0.0) continue;

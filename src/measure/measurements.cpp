@@ -98,6 +98,20 @@ typename Dim<D>::Tensor average_stress(const World<D>& world, double volume) {
 }
 
 template <int D>
+typename Dim<D>::Tensor cell_stress(const World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  typename Dim<D>::Tensor s = world.cell_fabric;
+  const auto& P = world.particles;
+  if (world.clumps.size() > 0)
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      if (P.clump[i] == kNoClump) continue;
+      const Vec arm = P.pos[i] - world.clumps.pos[P.clump[i]];
+      s -= arm * P.force[i].transpose();
+    }
+  return 0.5 * (s + s.transpose()) / world.cell.volume();
+}
+
+template <int D>
 double coordination_number(const World<D>& world) {
   const std::size_t n = body_count(world);
   return n ? 2.0 * static_cast<double>(world.stats.contacts) / static_cast<double>(n) : 0.0;
@@ -213,6 +227,8 @@ template double gravity_energy<2>(const World<2>&);
 template double gravity_energy<3>(const World<3>&);
 template double body_weight<2>(const World<2>&);
 template double body_weight<3>(const World<3>&);
+template Dim<2>::Tensor cell_stress<2>(const World<2>&);
+template Dim<3>::Tensor cell_stress<3>(const World<3>&);
 template double solid_volume<2>(const World<2>&);
 template double solid_volume<3>(const World<3>&);
 template std::size_t intact_bonds<2>(const World<2>&);

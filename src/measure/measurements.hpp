@@ -52,6 +52,12 @@ double unbalanced_force_ratio(const World<D>& world);
 template <int D>
 typename Dim<D>::Tensor average_stress(const World<D>& world, double volume);
 
+// The average stress of a periodic cell, compression positive, from any step: the contacts'
+// sum of d (x) f (world.cell_fabric, clump members' centres replaced by their clump's, as
+// integrate_clumps does for the fabric stress) over the cell's volume, symmetric part.
+template <int D>
+typename Dim<D>::Tensor cell_stress(const World<D>& world);
+
 // Volume (area in 2D) of solid inside the box, partial grains counted exactly
 // (2D) or by Gauss quadrature over slices (3D, relative error below 1e-6). Clump
 // members are counted as separate grains: overlaps between them count twice.

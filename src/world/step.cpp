@@ -57,14 +57,31 @@ class ScopedStage {
 // farther node. The cheap velocity bound is refined by an exact pass first.
 template <int D>
 bool list_expired(World<D>& world) {
-  double wall_disp = spar_max_displacement(world);
-  for (const auto& w : world.walls) wall_disp = std::max(wall_disp, w.displacement.norm());
-  auto expired = [&](double d) {
-    return 2.0 * d > world.nlist.skin || d + wall_disp > world.nlist.skin;
-  };
-  if (!expired(world.disp_bound + world.radius_growth)) return false;
   const auto& P = world.particles;
   const auto n = static_cast<std::ptrdiff_t>(P.size());
+  const double skin = world.nlist.skin;
+  if (world.cell.periodic) {
+    // Displacements from the affine motion of the cell (u = x - F x_build), and the
+    // strain that brings grains a reach apart closer (world/periodic_cell.hpp).
+    const double closing = world.cell.strain_since_build() * world.cell.reach_at_build;
+    auto expired = [&](double u) { return 2.0 * u + closing > skin; };
+    if (!expired(world.disp_bound + world.radius_growth)) return false;
+    const typename Dim<D>::Tensor F = world.cell.h * world.cell.h_at_build.inverse();
+    double d2 = 0.0;  // a maximum: the same in any order
+#pragma omp parallel for num_threads(world.threads) schedule(static) \
+    reduction(max                                                    \
+              : d2) if (world.threads > 1 && P.size() >= kParallelMin)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      d2 = std::max(d2, (P.pos[k] - F * P.pos_at_build[k]).squaredNorm());
+    }
+    world.disp_bound = std::sqrt(d2);
+    return expired(world.disp_bound + world.radius_growth);
+  }
+  double wall_disp = spar_max_displacement(world);
+  for (const auto& w : world.walls) wall_disp = std::max(wall_disp, w.displacement.norm());
+  auto expired = [&](double d) { return 2.0 * d > skin || d + wall_disp > skin; };
+  if (!expired(world.disp_bound + world.radius_growth)) return false;
   double d2 = 0.0;  // a maximum: the same in any order
 #pragma omp parallel for num_threads(world.threads) schedule(static) \
     reduction(max                                                    \
@@ -148,7 +165,7 @@ void check_finite(const World<D>& world) {
         if (!(fast[i] || fast[j])) continue;
         const double reach = P.radius[i] + P.radius[j];
         const auto rel = (P.vel[i] - P.vel[j]).eval();
-        if ((P.pos[i] - P.pos[j]).squaredNorm() < reach * reach &&
+        if (world.branch(i, j, k).squaredNorm() < reach * reach &&
             too_fast(rel, std::min(P.radius[i], P.radius[j])))
           runaway(fast[i] ? i : j, "grain " + std::to_string(P.id[fast[i] ? j : i]), rel.norm());
       }
@@ -244,6 +261,7 @@ void step(World<D>& world) {
     ScopedStage<D> t(world, Stage::kIntegration);
     integrate(world);
     move_walls(world);
+    if (world.cell.periodic) world.cell.deform(world.dt);
     world.time += world.dt;
     ++world.step;
     if (world.step % 1000 == 0) check_finite(world);

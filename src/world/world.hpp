@@ -19,6 +19,7 @@
 #include "particles/particles.hpp"
 #include "structures/spar_chains.hpp"
 #include "walls/walls.hpp"
+#include "world/periodic_cell.hpp"
 
 namespace geodem {
 
@@ -123,6 +124,7 @@ struct WorldState {
   std::vector<PairLaw> pair_laws;  // materials x materials
   std::vector<PairLaw> wall_laws;  // materials x walls
   NeighbourList<D> nlist;
+  PeriodicCell<D> cell;  // periodic boundaries when cell.periodic
   // Shared so that a world can be copied (a prepared sample reused for several tests).
   std::vector<std::shared_ptr<Controller<D>>> controllers;
 
@@ -140,6 +142,14 @@ struct WorldState {
   // update_contact_extras(), which must be called again if pair laws are edited.
   bool contact_extras = false;
   std::uint64_t broken_bonds = 0;  // bonds broken since the start
+
+  // The branch vector from grain i to the partner j of list entry k: x_j - x_i, to the
+  // partner's image in a periodic cell.
+  typename Dim<D>::Vec branch(std::size_t i, std::size_t j, std::size_t k) const {
+    typename Dim<D>::Vec d = particles.pos[j] - particles.pos[i];
+    if (cell.periodic && !nlist.image[k].home()) d += cell.shift(nlist.image[k]);
+    return d;
+  }
 
   const PairLaw& pair_law(std::uint16_t a, std::uint16_t b) const {
     return pair_laws[a * materials.size() + b];
@@ -194,6 +204,12 @@ struct StepReport {
   // The first overlap beyond overlap_limit (grain, partner: a grain, or -1 - wall index).
   std::int64_t overlap_offender = -1, overlap_partner = -1;
   double overlap_ratio = 0.0;
+  // In a periodic cell, every step (the cell servo's feedback): the sum over grain-grain
+  // contacts of d (x) f (the fabric stress times the volume, members' centres as the grains'
+  // centres), and of kn (d_k n_k)^2, the stiffness of the packing against a homogeneous strain
+  // of component k (times the volume).
+  typename Dim<D>::Tensor cell_fabric = Dim<D>::Tensor::Zero();
+  typename Dim<D>::Vec cell_stiffness = Dim<D>::Vec::Zero();
 };
 
 template <int D>

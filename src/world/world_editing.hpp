@@ -52,6 +52,7 @@ void drop_grains_from_list(NeighbourList<D>& L, const std::vector<std::uint32_t>
       [&](std::uint32_t k) {
         out.other.push_back(index_of[L.other[k]]), out.spring.push_back(L.spring[k]);
         if (extras) out.extra.push_back(L.extra[k]);
+        if (!L.image.empty()) out.image.push_back(L.image[k]);
       });
   filter(L.wall_start, out.wall_start, always, [&](std::uint32_t k) {
     out.wall.push_back(L.wall[k]), out.wall_spring.push_back(L.wall_spring[k]);

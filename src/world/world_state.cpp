@@ -86,7 +86,9 @@ void visit(Archive& a, World<D>& w, bool adopt_walls = false) {
   auto& L = w.nlist;
   a(L.start), a(L.other), a(L.spring), a(L.wall_start), a(L.wall), a(L.wall_spring);
   a(L.extra), a(L.wall_extra), a(L.spar_start), a(L.spar), a(L.spar_spring), a(L.skin);
-  a(L.builds);
+  a(L.builds), a(L.image);
+  a(w.cell.periodic), a(w.cell.h), a(w.cell.vel_grad), a(w.cell.h_at_build);
+  a(w.cell.reach_at_build);
   if constexpr (Archive::kLoading) w.collision_shares.built_for = CollisionShares::kNever;
 
   a(w.gravity), a(w.local_damping), a(w.dt), a(w.auto_dt), a(w.dt_safety);
@@ -136,6 +138,8 @@ void check_sizes(const World<D>& w) {
     if (k >= w.walls.size()) throw CheckpointError("neighbour list names a wall beyond the last");
   for (auto e : L.spar)
     if (e >= w.spars.elements()) throw CheckpointError("neighbour list names a missing element");
+  if (w.cell.periodic && L.image.size() != L.other.size())
+    throw CheckpointError("inconsistent periodic images");
   if (L.spring.size() != L.other.size() || L.wall_spring.size() != L.wall.size() ||
       L.spar_spring.size() != L.spar.size())
     throw CheckpointError("inconsistent contact history");

@@ -1,0 +1,146 @@
+#include "broadphase/periodic_search.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "base/error.hpp"
+#include "clumps/clump_dynamics.hpp"
+
+namespace geodem {
+
+namespace {
+
+// The whole edge vectors to take off x to bring it into the cell: floor(h^-1 x).
+template <int D>
+CellImage outside_by(const typename Dim<D>::Tensor& h_inv, const typename Dim<D>::Vec& x) {
+  const typename Dim<D>::Vec s = h_inv * x;
+  CellImage c;
+  for (int k = 0; k < D; ++k) c.m[k] = static_cast<std::int8_t>(std::floor(s[k]));
+  return c;
+}
+
+}  // namespace
+
+template <int D>
+void wrap_into_cell(World<D>& world) {
+  auto& P = world.particles;
+  auto& C = world.clumps;
+  const auto& cell = world.cell;
+  const typename Dim<D>::Tensor h_inv = cell.h.inverse();
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    if (P.member(i)) continue;
+    const CellImage c = outside_by<D>(h_inv, P.pos[i]);
+    if (!c.home()) P.pos[i] -= cell.shift(c);
+  }
+  bool moved = false;
+  for (std::size_t c = 0; c < C.size(); ++c) {
+    const CellImage m = outside_by<D>(h_inv, C.pos[c]);
+    if (m.home()) continue;
+    C.pos[c] -= cell.shift(m);
+    moved = true;
+  }
+  if (moved) place_members(world);
+}
+
+template <int D>
+void list_periodic_pairs(World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  const auto& P = world.particles;
+  auto& L = world.nlist;
+  auto& cell = world.cell;
+  const std::size_t n = P.size();
+  double rmax = 0.0;
+  for (double r : P.radius) rmax = std::max(rmax, r);
+  const double reach = 2.0 * rmax + L.skin;
+  cell.reach_at_build = reach;
+  const Vec widths = cell.widths();
+  std::array<int, 3> nb{1, 1, 1};
+  for (int k = 0; k < D; ++k) {
+    nb[k] = static_cast<int>(std::floor(widths[k] / reach));
+    if (nb[k] < 3)
+      throw InputError("", 0, "cell",
+                       "the periodic cell is " + std::to_string(widths[k]) +
+                           " m across its faces " + std::to_string(k) +
+                           ", less than three times the largest diameter plus the skin (" +
+                           std::to_string(3.0 * reach) + " m): make the cell larger");
+    // Few grains in a large cell: bins of about one grain each are enough.
+    nb[k] = std::min(nb[k], 4 * static_cast<int>(std::cbrt(static_cast<double>(n))) + 8);
+  }
+  // Bins in fractional coordinates, filled by a counting sort.
+  const typename Dim<D>::Tensor h_inv = cell.h.inverse();
+  static thread_local std::vector<std::array<int, 3>> bin_of;
+  static thread_local std::vector<std::uint32_t> bin_start, sorted, fill;
+  bin_of.assign(n, {0, 0, 0});
+  const std::size_t nbins = static_cast<std::size_t>(nb[0]) * nb[1] * nb[2];
+  auto index = [&](const std::array<int, 3>& b) {
+    return static_cast<std::size_t>((b[2] * nb[1] + b[1]) * nb[0] + b[0]);
+  };
+  bin_start.assign(nbins + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec s = h_inv * P.pos[i];
+    for (int k = 0; k < D; ++k)
+      bin_of[i][k] = std::clamp(static_cast<int>(std::floor(s[k] * nb[k])), 0, nb[k] - 1);
+    ++bin_start[index(bin_of[i]) + 1];
+  }
+  for (std::size_t b = 0; b < nbins; ++b) bin_start[b + 1] += bin_start[b];
+  sorted.resize(n);
+  fill.assign(bin_start.begin(), bin_start.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    sorted[fill[index(bin_of[i])]++] = static_cast<std::uint32_t>(i);
+
+  const bool clumps = !P.clump.empty();
+  const int zr = D == 3 ? 1 : 0;
+  static thread_local std::vector<std::pair<std::uint32_t, CellImage>> row;
+  L.start.assign(n + 1, 0);
+  L.other.clear();
+  L.image.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    row.clear();
+    const Vec xi = P.pos[i];
+    const double ri = P.radius[i] + L.skin;
+    const std::uint32_t ci = clumps ? P.clump[i] : kNoClump;
+    for (int dz = -zr; dz <= zr; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const std::array<int, 3> off{dx, dy, dz};
+          std::array<int, 3> b{0, 0, 0};
+          CellImage image;
+          for (int k = 0; k < D; ++k) {
+            b[k] = bin_of[i][k] + off[k];
+            if (b[k] < 0) {
+              b[k] += nb[k];
+              image.m[k] = -1;
+            } else if (b[k] >= nb[k]) {
+              b[k] -= nb[k];
+              image.m[k] = 1;
+            }
+          }
+          const Vec shift = cell.shift(image);
+          const std::size_t bin = index(b);
+          for (std::uint32_t s = bin_start[bin]; s < bin_start[bin + 1]; ++s) {
+            const std::uint32_t j = sorted[s];
+            if (j <= i) continue;
+            if (ci != kNoClump && P.clump[j] == ci) continue;  // members of one clump
+            const double r = ri + P.radius[j];
+            if ((P.pos[j] + shift - xi).squaredNorm() < r * r) row.emplace_back(j, image);
+          }
+        }
+    std::sort(row.begin(), row.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [j, image] : row) {
+      L.other.push_back(j);
+      L.image.push_back(image);
+    }
+    L.start[i + 1] = static_cast<std::uint32_t>(L.other.size());
+  }
+}
+
+template void wrap_into_cell<2>(World<2>&);
+template void wrap_into_cell<3>(World<3>&);
+template void list_periodic_pairs<2>(World<2>&);
+template void list_periodic_pairs<3>(World<3>&);
+
+}  // namespace geodem
