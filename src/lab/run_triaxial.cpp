@@ -11,15 +11,13 @@
 #include "base/text.hpp"
 #include "clumps/grain_mix.hpp"
 #include "contacts/bonds.hpp"
-#include "controllers/axial_strain_rate.hpp"
-#include "controllers/radius_growth.hpp"
-#include "controllers/stress_servo.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
 #include "io/step_loop.hpp"
 #include "lab/lab_phases.hpp"
 #include "lab/soil_parameters.hpp"
+#include "lab/triaxial_controllers.hpp"
 #include "lab/triaxial_test_state.hpp"
 #include "measure/measurements.hpp"
 #include "particles/random_cloud.hpp"
@@ -57,7 +55,7 @@ struct Lab {
   HistoryCsv prep_csv, history;
   VtkSeries<D> vtk;
   RunCheckpoints checkpoints;
-  std::vector<std::shared_ptr<StressServo<D>>> servos;
+  std::vector<std::shared_ptr<Controller<D>>> servos;  // of the test under way
 
   // The run's own state, saved in checkpoints (visit_state).
   Phase phase = Phase::kCompaction;
@@ -160,7 +158,8 @@ struct Lab {
     w.materials = {s.grain, s.wall};
     Vec size;
     for (int k = 0; k < D; ++k) size[k] = s.box[static_cast<std::size_t>(k)];
-    box = LabBox<D>::add_to(w, Vec::Zero(), size, 1);
+    box =
+        s.periodic ? LabBox<D>::periodic_cell(w, size) : LabBox<D>::add_to(w, Vec::Zero(), size, 1);
     w.resolve_pair_laws();
     Random rng(s.seed);
     try {
@@ -184,28 +183,12 @@ struct Lab {
     w.threads = opt.threads;
   }
 
-  // The controllers of a phase. The servos of a test are made at its consolidation and
-  // kept through its compression (their integral terms carry over).
   void install_controllers(bool new_servos) {
-    w.controllers.clear();
-    if (phase <= Phase::kStabilisation) {
-      w.controllers.push_back(std::make_shared<RadiusGrowth<D>>(
-          box, s.compaction_stress, s.max_multiplier, s.final_max_multiplier));
-      return;
-    }
-    if (phase == Phase::kDone) return;
-    if (new_servos) {
-      servos.clear();
-      for (int k = 0; k < D; ++k)
-        servos.push_back(std::make_shared<StressServo<D>>(box, k, sigma3(), s.servo_gain));
-    }
-    if (phase == Phase::kCompression) {
-      // Axial wall strain-controlled, lateral walls servo-controlled.
-      for (int k = 0; k < D - 1; ++k) w.controllers.push_back(servos[static_cast<std::size_t>(k)]);
-      w.controllers.push_back(std::make_shared<AxialStrainRate<D>>(box, kAxial, s.strain_rate));
-    } else {
-      w.controllers.assign(servos.begin(), servos.end());
-    }
+    const TriaxialStage stage = phase <= Phase::kStabilisation ? TriaxialStage::kPreparation
+                                : phase == Phase::kCompression ? TriaxialStage::kCompression
+                                : phase == Phase::kDone        ? TriaxialStage::kDone
+                                                               : TriaxialStage::kConsolidation;
+    install_triaxial_controllers(w, box, s, stage, sigma3(), new_servos, servos);
   }
 
   void start() {

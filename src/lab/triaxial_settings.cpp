@@ -31,6 +31,7 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
   if (s.box.size() != D) sample->fail("box", "expected " + std::to_string(D) + " sizes (m)");
   for (double b : s.box)
     if (!(b > 0.0)) sample->fail("box", "sizes must be positive");
+  s.periodic = sample->choice("boundary", "walls", {"walls", "periodic"}) == "periodic";
   s.count = static_cast<std::size_t>(sample->integer("count", 1000, 2, 50'000'000));
   s.radius_fuzz = sample->in_range("radius_fuzz", 0.3333, 0.0, 0.95);
   s.initial_porosity = sample->in_range("initial_porosity", 0.95, 0.5, 0.999);
@@ -121,7 +122,9 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
   for (double v : s.confining_stresses)
     if (!(v > 0.0)) sh->fail("confining_stress", "confining stresses must be positive (Pa)");
   s.shear_damping = sh->in_range("damping", 0.1, 0.0, 0.99);
-  s.servo_gain = sh->in_range("servo_gain", 0.5, 1e-3, 1.0);
+  // The cell servo corrects a fraction of the stress error each step against the packing's
+  // affine stiffness (controllers/cell_servo.hpp): a smaller fraction than the wall servo's.
+  s.servo_gain = sh->in_range("servo_gain", s.periodic ? 0.1 : 0.5, 1e-3, 1.0);
   s.consolidation_max_steps =
       static_cast<std::uint64_t>(sh->integer("consolidation_max_steps", 100'000, 1, (1LL << 50)));
   s.history_points = static_cast<int>(sh->integer("history_points", 300, 10, 1000000));

@@ -21,6 +21,7 @@ struct TriaxialSettings {
   std::uint64_t seed = 1;
   // [sample]
   std::vector<double> box;  // m
+  bool periodic = false;    // boundary = "periodic": a periodic cell instead of walls
   std::size_t count = 1000;
   double radius_fuzz = 0.3333;
   double initial_porosity = 0.95;

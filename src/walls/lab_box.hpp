@@ -1,11 +1,15 @@
 // The rigid box of a lab test: one pair of plane walls per axis, lo (normal +e_k)
 // and hi (normal -e_k). Stresses come from the wall forces over the current face
 // areas, strains from the wall positions; both compression positive.
+//
+// Or, without walls, a periodic cell of the same size (world/periodic_cell.hpp), kept
+// rectangular: its size is the diagonal of h, its stresses the cell's average stress.
 #pragma once
 
 #include <array>
 #include <string>
 
+#include "measure/measurements.hpp"
 #include "world/world.hpp"
 
 namespace geodem {
@@ -15,6 +19,18 @@ struct LabBox {
   using Vec = typename Dim<D>::Vec;
   std::array<std::size_t, D> lo{}, hi{};  // wall indices
   Vec initial_size = Vec::Zero();
+  bool periodic = false;
+
+  // A periodic cell [0, size] in place of walls.
+  static LabBox periodic_cell(World<D>& w, const Vec& size) {
+    LabBox box;
+    box.periodic = true;
+    box.initial_size = size;
+    w.cell.periodic = true;
+    w.cell.h = size.asDiagonal();
+    w.cell.vel_grad.setZero();
+    return box;
+  }
 
   // Adds the 2D walls of the box [a, b] with the given material; records the size.
   static LabBox add_to(World<D>& w, const Vec& a, const Vec& b, std::uint16_t material) {
@@ -37,6 +53,7 @@ struct LabBox {
   }
 
   Vec size(const World<D>& w) const {
+    if (periodic) return w.cell.h.diagonal();
     Vec s;
     for (int k = 0; k < D; ++k) s[k] = w.walls[hi[k]].point[k] - w.walls[lo[k]].point[k];
     return s;
@@ -52,10 +69,12 @@ struct LabBox {
   double volume(const World<D>& w) const { return size(w).prod(); }
   // Mean normal stress on the two faces normal to axis k.
   double stress(const World<D>& w, int k) const {
+    if (periodic) return cell_stress(w)(k, k);
     const auto nf = [&](std::size_t i) { return -w.walls[i].force.dot(w.walls[i].normal); };
     return 0.5 * (nf(lo[k]) + nf(hi[k])) / area(w, k);
   }
   double mean_stress(const World<D>& w) const {
+    if (periodic) return cell_stress(w).trace() / D;
     double s = 0.0;
     for (int k = 0; k < D; ++k) s += stress(w, k);
     return s / D;

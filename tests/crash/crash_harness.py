@@ -57,6 +57,8 @@ CASES = {
     "scene": (SCENE, 300, False),
     "staged": (SMALL_STAGED, 1500, False),
     "triaxial": (TRIAXIAL, 2500, False),
+    "triaxial_periodic": (TRIAXIAL.replace("count = 150", 'count = 150\nboundary = "periodic"'),
+                          2500, False),
     "pullout": (PULLOUT, 3000, False),
     "interface_shear": (SHEAR, None, False),
     "series": (SERIES, 3000, True),
