@@ -115,6 +115,11 @@ void VtkSeries<D>::write(const World<D>& world) {
     write_contacts_vtp(dir_ + "/vtk/" + name, world);
     pvd_.add(world.time, name, 3);
   }
+  if (world.cell.periodic) {
+    std::snprintf(name, sizeof name, "cell_%06d.vtp", count_);
+    write_cell_vtp(dir_ + "/vtk/" + name, world);
+    pvd_.add(world.time, name, 4);
+  }
   pvd_.write();
   ++count_;
 }

@@ -1,5 +1,7 @@
 #include "io/vtk_writer.hpp"
 
+#include "measure/measurements.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -182,6 +184,46 @@ void write_walls_vtp(const std::string& path, const World<D>& world, double half
 }
 
 template <int D>
+void write_cell_vtp(const std::string& path, const World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  const auto& h = world.cell.h;
+  std::vector<double> pts, stress;
+  std::vector<std::int64_t> conn, offs;
+  const typename Dim<D>::Tensor sigma = cell_stress(world);
+  // Corner c (bits: which edge vectors are added); an edge joins corners one bit apart.
+  auto corner = [&](int c) {
+    Vec x = Vec::Zero();
+    for (int k = 0; k < D; ++k)
+      if (c & (1 << k)) x += h.col(k);
+    return x;
+  };
+  for (int c = 0; c < (1 << D); ++c)
+    for (int k = 0; k < D; ++k) {
+      if (c & (1 << k)) continue;
+      for (const Vec& x : {corner(c), corner(c | (1 << k))}) {
+        for (int a = 0; a < 3; ++a) pts.push_back(a < D ? x[a] : 0.0);
+        conn.push_back(static_cast<std::int64_t>(pts.size() / 3 - 1));
+      }
+      offs.push_back(static_cast<std::int64_t>(conn.size()));
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) stress.push_back(a < D && b < D ? sigma(a, b) : 0.0);
+    }
+  AppendedData data;
+  std::ostringstream body;
+  body << "<PolyData>\n<Piece NumberOfPoints=\"" << pts.size() / 3
+       << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << offs.size()
+       << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
+  data.add("stress", "Float64", 9, stress.data(), stress.size() * sizeof(double));
+  body << "<CellData Tensors=\"stress\">\n" << data.take_xml() << "</CellData>\n";
+  data.add("Points", "Float64", 3, pts.data(), pts.size() * sizeof(double));
+  body << "<Points>\n" << data.take_xml() << "</Points>\n";
+  data.add("connectivity", "Int64", 1, conn.data(), conn.size() * 8);
+  data.add("offsets", "Int64", 1, offs.data(), offs.size() * 8);
+  body << "<Lines>\n" << data.take_xml() << "</Lines>\n</Piece>\n</PolyData>\n";
+  write_file_atomic(path, finish("PolyData", body.str(), data));
+}
+
+template <int D>
 void write_spars_vtp(const std::string& path, const World<D>& world) {
   const auto& S = world.spars;
   std::vector<double> pts, vel, tension, stiffness;
@@ -266,6 +308,8 @@ template void write_particles_vtu<3>(const std::string&, const World<3>&,
                                      const std::vector<Dim<3>::Vec>*);
 template void write_walls_vtp<2>(const std::string&, const World<2>&, double);
 template void write_walls_vtp<3>(const std::string&, const World<3>&, double);
+template void write_cell_vtp<2>(const std::string&, const World<2>&);
+template void write_cell_vtp<3>(const std::string&, const World<3>&);
 template void write_spars_vtp<2>(const std::string&, const World<2>&);
 template void write_spars_vtp<3>(const std::string&, const World<3>&);
 template void write_contacts_vtp<2>(const std::string&, const World<2>&);

@@ -32,7 +32,13 @@ void write_spars_vtp(const std::string& path, const World<D>& world);
 template <int D>
 void write_contacts_vtp(const std::string& path, const World<D>& world);
 
-// The .pvd index: part 0 grains, part 1 walls, part 2 spar chains, part 3 contacts.
+// The periodic cell's edges as .vtp lines (4 in 2D, 12 in 3D), each carrying the cell's
+// average stress tensor (compression positive), for ParaView.
+template <int D>
+void write_cell_vtp(const std::string& path, const World<D>& world);
+
+// The .pvd index: part 0 grains, part 1 walls, part 2 spar chains, part 3 contacts, part 4
+// the periodic cell.
 class PvdIndex {
  public:
   struct Entry {

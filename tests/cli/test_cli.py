@@ -18,6 +18,7 @@ from pathlib import Path
 
 from small_scenarios import (CHECKPOINT_SCENE, LAB_CHECKPOINT_TRIAXIAL, SMALL_PULLOUT,
                              SMALL_SCENE)
+from test_stages import read_vtk
 
 GEODEM = None
 ROOT = None
@@ -88,6 +89,26 @@ class CliTest(unittest.TestCase):
             self.assertTrue((out / "energy.png").exists())
             self.assertTrue((out / "wall_forces.png").exists())
             self.assertFalse(list(out.glob("**/*.tmp")))
+
+    def test_periodic_biaxial_writes_its_cell(self):
+        # The small biaxial test in a periodic cell: no walls; the cell's edges in each VTK
+        # frame with its stress, the lateral stress at the last confining stress at the end.
+        text = LAB_CHECKPOINT_TRIAXIAL.replace("count = 150", 'count = 150\nboundary = "periodic"')
+        out = self.dir / "periodic"
+        r = run("run", self.write(text), "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        results = json.loads((out / "summary.json").read_text())["results"]
+        self.assertEqual(len(results["tests"]), 2)
+        pvd = (out / "vtk" / "particles.pvd").read_text()
+        self.assertNotIn("walls_", pvd)
+        frames = sorted((out / "vtk").glob("cell_*.vtp"))
+        self.assertGreater(len(frames), 2)
+        root, arrays = read_vtk(frames[-1])
+        self.assertEqual(root.find(".//Piece").get("NumberOfLines"), "4")
+        self.assertEqual(len(arrays["stress"]), 4 * 9)
+        sxx, syy = arrays["stress"][0], arrays["stress"][4]
+        self.assertLess(abs(sxx / 1e5 - 1.0), 0.02)
+        self.assertGreater(syy, sxx)
 
     def test_threads_give_the_same_history(self):
         # 6,000 grains falling into a bed: enough for the step to run on several threads
