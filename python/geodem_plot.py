@@ -115,31 +115,50 @@ def plot_scene(out, summary, h):
 
 
 def plot_triaxial(out, summary, h):
-    """q and volumetric strain against axial strain, one curve per confining stress;
-    the Mohr circles at the peaks and the fitted envelope with two tests or more."""
+    """q and volumetric strain (undrained: the excess pore pressure) against axial strain,
+    one curve per confining stress; the stress path p'-q; the Mohr circles at the peaks and
+    the fitted envelope with two tests or more."""
     results = summary.get("results", {})
     tests = results.get("tests", [])
     ids = sorted(set(int(t) for t in h["test"]))
+    undrained = "excess_pore_pressure" in h
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6.4, 7.0), sharex=True)
+    fig_p, ax_p = plt.subplots(figsize=(6.4, 4.6))
     for t in ids:
         rows = [i for i, v in enumerate(h["test"]) if int(v) == t]
         ea = [100 * h["axial_strain"][i] for i in rows]
         label = f"sigma3 = {tests[t]['confining_stress'] / 1e3:g} kPa" if t < len(tests) else f"test {t}"
         ax1.plot(ea, [h["q"][i] / 1e3 for i in rows], label=label)
-        ax2.plot(ea, [100 * h["volumetric_strain"][i] for i in rows], label=label)
+        if undrained:
+            ax2.plot(ea, [h["excess_pore_pressure"][i] / 1e3 for i in rows], label=label)
+        else:
+            ax2.plot(ea, [100 * h["volumetric_strain"][i] for i in rows], label=label)
+        ax_p.plot([h["p"][i] / 1e3 for i in rows], [h["q"][i] / 1e3 for i in rows], label=label)
         if t < len(tests):
             ax1.plot(100 * tests[t]["axial_strain_at_peak"], tests[t]["peak_q"] / 1e3, "k.", ms=8)
     ax1.set_ylabel("q = sigma1 - sigma3 (kPa)")
     ax1.legend(fontsize=8)
     ax1.grid(alpha=0.3)
     ax2.set_xlabel("axial strain (%)")
-    ax2.set_ylabel("volumetric strain (%, + contraction)")
-    ax2.invert_yaxis()
+    if undrained:
+        ax2.set_ylabel("excess pore pressure (kPa)")
+    else:
+        ax2.set_ylabel("volumetric strain (%, + contraction)")
+        ax2.invert_yaxis()
     ax2.grid(alpha=0.3)
     dim = summary.get("scenario", {}).get("dimension", 3)
-    fig.suptitle(("Triaxial" if dim == 3 else "Biaxial") + " compression")
+    fig.suptitle(("Triaxial" if dim == 3 else "Biaxial") + (" compression, undrained (constant volume)"
+                                                           if undrained else " compression"))
     made = []
     save(fig, out, "stress_strain.png", made)
+    ax_p.set_xlabel("p' (kPa)")
+    ax_p.set_ylabel("q (kPa)")
+    ax_p.set_xlim(left=0)
+    ax_p.set_ylim(bottom=0)
+    ax_p.grid(alpha=0.3)
+    ax_p.legend(fontsize=8)
+    ax_p.set_title("Effective stress path" + (" (undrained)" if undrained else ""))
+    save(fig_p, out, "stress_path.png", made)
     mc = results.get("mohr_coulomb")
     if mc and tests:
         fig, ax = plt.subplots(figsize=(6.4, 4.2))

@@ -222,8 +222,8 @@ struct Lab {
     load_world_state(win, w);
     prep_csv.resume_rows(opt.out_dir + "/preparation.csv", triaxial_prep_columns(), prep_rows);
     if (tests_begun)
-      history.resume_rows(opt.out_dir + "/history.csv", triaxial_history_columns<D>(bonds()),
-                          history_rows);
+      history.resume_rows(opt.out_dir + "/history.csv",
+                          triaxial_history_columns<D>(bonds(), s.undrained), history_rows);
     checkpoints.resume_clock(wall_before);
   }
 
@@ -292,7 +292,7 @@ struct Lab {
     prep["steps"] = w.step;
     w.controllers.clear();
     prepared = w;
-    history.open(opt.out_dir + "/history.csv", triaxial_history_columns<D>(bonds()));
+    history.open(opt.out_dir + "/history.csv", triaxial_history_columns<D>(bonds(), s.undrained));
     if (s.vtk) vtk.write(prepared);
     test = 0;
     begin_test();
@@ -402,6 +402,12 @@ struct Lab {
     if (bonds()) {
       row.push_back(static_cast<double>(intact_bonds(w)));
       row.push_back(static_cast<double>(w.broken_bonds - h.broken0));
+    }
+    h.p_end = p, h.q_end = s1 - s3;
+    if (s.undrained) {
+      h.u_end = Shear<D>::excess_pore_pressure(sigma3(), p, s1 - s3);
+      h.u_max = std::max(h.u_max, h.u_end);
+      row.push_back(h.u_end);
     }
     history.row(row);
     h.curve.axial_strain.push_back(h.eps);

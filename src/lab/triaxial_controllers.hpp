@@ -4,7 +4,9 @@
 // - consolidation: every axis held at the confining stress, by one servo per wall axis
 //   (StressServo) or by the cell servo (CellServo);
 // - compression: the axial strain rate imposed (AxialStrainRate, or the cell's axial
-//   velocity gradient), the lateral axes still at the confining stress.
+//   velocity gradient), the lateral axes still at the confining stress; undrained, the
+//   lateral axes extend at the rate that keeps the volume constant instead (-rate / (D - 1)
+//   each: the rates sum to zero).
 // A test's servos are made at its consolidation and kept through its compression, so that
 // their integral terms carry over.
 #pragma once
@@ -48,8 +50,12 @@ void install_triaxial_controllers(World<D>& w, const LabBox<D>& box, const Triax
           std::make_shared<CellServo<D>>(axes, kCellServoRateFactor * s.strain_rate, s.servo_gain)};
     }
     auto cell = std::static_pointer_cast<CellServo<D>>(servos[0]);
-    if (stage == TriaxialStage::kCompression)
+    if (stage == TriaxialStage::kCompression) {
       cell->set_axis(kAxial, Axis{false, 0.0, -s.strain_rate});
+      if (s.undrained)
+        for (int k = 0; k < kAxial; ++k)
+          cell->set_axis(k, Axis{false, 0.0, s.strain_rate / (D - 1)});
+    }
     w.controllers.push_back(cell);
     return;
   }
@@ -59,8 +65,15 @@ void install_triaxial_controllers(World<D>& w, const LabBox<D>& box, const Triax
       servos.push_back(std::make_shared<StressServo<D>>(box, k, sigma3, s.servo_gain));
   }
   if (stage == TriaxialStage::kCompression) {
-    // Axial wall strain-controlled, lateral walls servo-controlled.
-    for (int k = 0; k < kAxial; ++k) w.controllers.push_back(servos[static_cast<std::size_t>(k)]);
+    // Axial wall strain-controlled, lateral walls servo-controlled (drained) or moved out at
+    // the constant-volume rate (undrained).
+    for (int k = 0; k < kAxial; ++k)
+      if (s.undrained) {
+        w.controllers.push_back(
+            std::make_shared<AxialStrainRate<D>>(box, k, -s.strain_rate / (D - 1)));
+      } else {
+        w.controllers.push_back(servos[static_cast<std::size_t>(k)]);
+      }
     w.controllers.push_back(std::make_shared<AxialStrainRate<D>>(box, kAxial, s.strain_rate));
   } else {
     w.controllers.assign(servos.begin(), servos.end());

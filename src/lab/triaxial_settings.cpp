@@ -125,6 +125,7 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
   // The cell servo corrects a fraction of the stress error each step against the packing's
   // affine stiffness (controllers/cell_servo.hpp): a smaller fraction than the wall servo's.
   s.servo_gain = sh->in_range("servo_gain", s.periodic ? 0.1 : 0.5, 1e-3, 1.0);
+  s.undrained = sh->choice("drainage", "drained", {"drained", "undrained"}) == "undrained";
   s.consolidation_max_steps =
       static_cast<std::uint64_t>(sh->integer("consolidation_max_steps", 100'000, 1, (1LL << 50)));
   s.history_points = static_cast<int>(sh->integer("history_points", 300, 10, 1000000));

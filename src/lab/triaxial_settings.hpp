@@ -51,6 +51,9 @@ struct TriaxialSettings {
   std::vector<double> confining_stresses;
   double shear_damping = 0.1;
   double servo_gain = 0.5;
+  // drainage = "undrained": compression at constant volume (the lateral axes extend at half
+  // (3D) or all (2D) of the axial rate); the excess pore pressure is recorded.
+  bool undrained = false;
   std::uint64_t consolidation_max_steps = 100'000;
   int history_points = 300;
   std::vector<double> vtk_at_strains;

@@ -32,12 +32,23 @@ struct Shear {
   double eps = 0.0, next_record = 0.0;
   std::vector<double> vtk_left;  // strains of the VTK frames to come, largest first
   CompressionCurve curve;
+  // The last recorded effective mean stress p' and deviator q, and the excess pore pressure
+  // of an undrained test (its largest and last values).
+  double p_end = 0.0, q_end = 0.0, u_max = 0.0, u_end = 0.0;
 
   template <class Archive>
   void visit(Archive& a) {
     a(ref), a(warning), a(bonds_made), a(broken0), a(porosity0), a(height0), a(d0), a(eps);
     a(next_record), a(vtk_left), a(curve.dimension), a(curve.axial_strain);
     a(curve.volumetric_strain), a(curve.sigma1), a(curve.sigma3);
+    a(p_end), a(q_end), a(u_max), a(u_end);
+  }
+
+  // The excess pore pressure of an undrained test at this point: the total mean stress of a
+  // test whose cell pressure stays sigma3 (p0 + q/3 in 3D, p0 + q/2 in 2D) minus the
+  // effective one the grains carry, p'.
+  static double excess_pore_pressure(double sigma3, double p, double q) {
+    return sigma3 + q / (D == 3 ? 3.0 : 2.0) - p;
   }
 };
 
@@ -47,13 +58,14 @@ inline std::vector<std::string> triaxial_prep_columns() {
 }
 
 template <int D>
-std::vector<std::string> triaxial_history_columns(bool bonds) {
+std::vector<std::string> triaxial_history_columns(bool bonds, bool undrained = false) {
   std::vector<std::string> cols = {"test",  "step", "time", "axial_strain", "volumetric_strain",
                                    "sigma1"};
   if (D == 3) cols.push_back("sigma2");
   for (const char* c : {"sigma3", "p", "q", "porosity", "coordination", "unbalanced"})
     cols.push_back(c);
   if (bonds) cols.insert(cols.end(), {"bonds", "broken_bonds"});
+  if (undrained) cols.push_back("excess_pore_pressure");
   return cols;
 }
 
@@ -87,6 +99,15 @@ nlohmann::json test_results(const Shear<D>& h, const TriaxialSettings& s, double
   r["d0_over_L"] = h.d0 / h.height0;
   r["inertial_number"] = s.strain_rate * h.d0 * std::sqrt(s.grain.density / sigma3);
   r["steps"] = w.step;
+  // The end of the test, for critical-state lines pooled over drained and undrained tests.
+  r["p_end"] = h.p_end;
+  r["q_end"] = h.q_end;
+  r["stress_ratio_end"] = h.p_end > 0.0 ? h.q_end / h.p_end : 0.0;
+  r["drainage"] = s.undrained ? "undrained" : "drained";
+  if (s.undrained) {
+    r["excess_pore_pressure_max"] = h.u_max;
+    r["excess_pore_pressure_end"] = h.u_end;
+  }
   if (bonds) {
     r["bonds_at_start"] = s.bonds_create == "before_shear"
                               ? h.bonds_made

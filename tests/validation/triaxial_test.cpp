@@ -40,7 +40,7 @@ std::vector<std::vector<double>> read_csv(const std::string& path,
 }
 
 template <int D>
-void check_preparation_and_servo(bool periodic) {
+TriaxialSettings small_test(bool periodic) {
   TriaxialSettings s;
   s.periodic = periodic;
   s.dimension = D;
@@ -62,6 +62,12 @@ void check_preparation_and_servo(bool periodic) {
   s.servo_gain = periodic ? 0.1 : 0.5;
   s.vtk = false;
   s.plots = false;
+  return s;
+}
+
+template <int D>
+void check_preparation_and_servo(bool periodic) {
+  const TriaxialSettings s = small_test<D>(periodic);
   RunOptions opt;
   opt.quiet = true;
   opt.out_dir = test::unique_temp_dir("triaxial" + std::to_string(D));
@@ -97,6 +103,40 @@ TYPED_TEST(Triaxial, PreparationAndServoHoldTheirTargets) {
 
 TYPED_TEST(Triaxial, PeriodicCellPreparationAndServoHoldTheirTargets) {
   check_preparation_and_servo<TypeParam::value>(true);
+}
+
+// Undrained (constant-volume) compression, walls and periodic cell: the volume stays
+// constant (the lateral rates cancel the axial one to first order in the step), and the
+// excess pore pressure recorded is sigma3 + q/3 (2D: q/2) - p' on every row.
+TYPED_TEST(Triaxial, UndrainedCompressionKeepsTheVolume) {
+  constexpr int D = TypeParam::value;
+  for (bool periodic : {false, true}) {
+    TriaxialSettings s = small_test<D>(periodic);
+    s.undrained = true;
+    RunOptions opt;
+    opt.quiet = true;
+    opt.out_dir = test::unique_temp_dir("undrained" + std::to_string(D) + (periodic ? "p" : "w"));
+    const auto summary = run_triaxial(s, opt);
+    std::vector<std::string> header;
+    const auto rows = read_csv(opt.out_dir + "/history.csv", header);
+    const auto col = [&](const std::string& name) {
+      return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) -
+                                      header.begin());
+    };
+    ASSERT_LT(col("excess_pore_pressure"), header.size());
+    double worst_volume = 0.0, worst_u = 0.0;
+    for (const auto& r : rows) {
+      worst_volume = std::max(worst_volume, std::abs(r[col("volumetric_strain")]));
+      const double u = 1e5 + r[col("q")] / (D == 3 ? 3.0 : 2.0) - r[col("p")];
+      worst_u = std::max(worst_u, std::abs(r[col("excess_pore_pressure")] - u) / 1e5);
+    }
+    const std::string tag = std::to_string(D) + (periodic ? "D periodic" : "D walls");
+    report(tag + " undrained: largest |volumetric strain| to 2 % axial", worst_volume);
+    EXPECT_LT(worst_volume, 1e-6);
+    EXPECT_LT(worst_u, 1e-12);
+    EXPECT_GT(rows.back()[col("axial_strain")], 0.019);
+    EXPECT_EQ(summary["results"]["drainage"], "undrained");
+  }
 }
 
 }  // namespace
