@@ -72,17 +72,24 @@ void list_periodic_pairs(World<D>& world) {
   // Bins in fractional coordinates, filled by a counting sort.
   const typename Dim<D>::Tensor h_inv = cell.h.inverse();
   static thread_local std::vector<std::array<int, 3>> bin_of;
+  static thread_local std::vector<CellImage> outside;  // a clump member beyond the faces
   static thread_local std::vector<std::uint32_t> bin_start, sorted, fill;
   bin_of.assign(n, {0, 0, 0});
+  outside.assign(n, CellImage{});
   const std::size_t nbins = static_cast<std::size_t>(nb[0]) * nb[1] * nb[2];
   auto index = [&](const std::array<int, 3>& b) {
     return static_cast<std::size_t>((b[2] * nb[1] + b[1]) * nb[0] + b[0]);
   };
   bin_start.assign(nbins + 1, 0);
+  // A clump member may lie beyond the faces (its clump was moved back by its centre): it is
+  // binned where its image inside the cell is, and remembers by how many edges it is out.
   for (std::size_t i = 0; i < n; ++i) {
     const Vec s = h_inv * P.pos[i];
-    for (int k = 0; k < D; ++k)
-      bin_of[i][k] = std::clamp(static_cast<int>(std::floor(s[k] * nb[k])), 0, nb[k] - 1);
+    for (int k = 0; k < D; ++k) {
+      const double whole = std::floor(s[k]);
+      outside[i].m[k] = static_cast<std::int8_t>(whole);
+      bin_of[i][k] = std::clamp(static_cast<int>(std::floor((s[k] - whole) * nb[k])), 0, nb[k] - 1);
+    }
     ++bin_start[index(bin_of[i]) + 1];
   }
   for (std::size_t b = 0; b < nbins; ++b) bin_start[b + 1] += bin_start[b];
@@ -118,14 +125,18 @@ void list_periodic_pairs(World<D>& world) {
               image.m[k] = 1;
             }
           }
-          const Vec shift = cell.shift(image);
           const std::size_t bin = index(b);
           for (std::uint32_t s = bin_start[bin]; s < bin_start[bin + 1]; ++s) {
             const std::uint32_t j = sorted[s];
             if (j <= i) continue;
             if (ci != kNoClump && P.clump[j] == ci) continue;  // members of one clump
+            // The bins hold the grains' images inside the cell: from grain i's own position,
+            // grain j is seen through the bins' image plus i's and less j's offset.
+            CellImage pair = image;
+            for (int k = 0; k < D; ++k)
+              pair.m[k] = static_cast<std::int8_t>(image.m[k] + outside[i].m[k] - outside[j].m[k]);
             const double r = ri + P.radius[j];
-            if ((P.pos[j] + shift - xi).squaredNorm() < r * r) row.emplace_back(j, image);
+            if ((P.pos[j] + cell.shift(pair) - xi).squaredNorm() < r * r) row.emplace_back(j, pair);
           }
         }
     std::sort(row.begin(), row.end(),
