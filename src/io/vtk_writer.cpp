@@ -215,12 +215,7 @@ void write_cell_vtp(const std::string& path, const World<D>& world) {
        << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
   data.add("stress", "Float64", 9, stress.data(), stress.size() * sizeof(double));
   body << "<CellData Tensors=\"stress\">\n" << data.take_xml() << "</CellData>\n";
-  data.add("Points", "Float64", 3, pts.data(), pts.size() * sizeof(double));
-  body << "<Points>\n" << data.take_xml() << "</Points>\n";
-  data.add("connectivity", "Int64", 1, conn.data(), conn.size() * 8);
-  data.add("offsets", "Int64", 1, offs.data(), offs.size() * 8);
-  body << "<Lines>\n" << data.take_xml() << "</Lines>\n</Piece>\n</PolyData>\n";
-  write_file_atomic(path, finish("PolyData", body.str(), data));
+  finish_lines(path, body, data, pts, conn, offs);
 }
 
 template <int D>
