@@ -49,6 +49,14 @@ if ((all)); then
     "$OUT/python/triax1/triaxial.json" examples/python/expected/triaxial_tutorial_seed1.json
   PYTHONPATH=build/python python3 examples/python/friction_sweep.py "$OUT/python/sweep"
   cp "$OUT/python/sweep/friction_sweep.png" "$OUT/python/sweep/sweep.json" examples/python/expected/
+  # The triaxial test between walls and in a periodic cell (seeds 1-3), and the
+  # critical-state comparison of drained and undrained biaxial tests in a periodic cell.
+  /usr/bin/python3 examples/triaxial3d/compare_boundaries.py "$OUT/triaxial3d_boundaries"
+  cp "$OUT/triaxial3d_boundaries/boundaries.png" "$OUT/triaxial3d_boundaries/boundaries.md" \
+    examples/triaxial3d/expected/
+  /usr/bin/python3 examples/biaxial2d/critical_state.py "$OUT/biaxial2d_critical_state" --strain 0.2
+  cp "$OUT/biaxial2d_critical_state/critical_state.png" \
+    "$OUT/biaxial2d_critical_state/critical_state.md" examples/biaxial2d/expected/
   # The staged scene's seed table.
   python3 examples/staged2d/seeds.py build/geodem "$OUT/staged2d_seeds"
 fi

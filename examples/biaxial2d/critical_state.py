@@ -18,14 +18,16 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+REUSE = False  # --reuse: runs already in OUT are read, not run again
 
 
 def run(geodem, out, drainage, seed, strain):
-    subprocess.run([geodem, "run", str(HERE / "scenario.toml"), "--out", str(out), "--overwrite",
-                    "--quiet", "--threads", "1", "--set", f"seed={seed}",
-                    "--set", "sample.boundary=periodic", "--set", f"shear.drainage={drainage}",
-                    "--set", f"shear.max_axial_strain={strain}", "--set", "output.vtk=false"],
-                   check=True)
+    if not REUSE or not (out / "summary.json").exists():
+        subprocess.run([geodem, "run", str(HERE / "scenario.toml"), "--out", str(out), "--overwrite",
+                        "--quiet", "--threads", "1", "--set", f"seed={seed}",
+                        "--set", "sample.boundary=periodic", "--set", f"shear.drainage={drainage}",
+                        "--set", f"shear.max_axial_strain={strain}", "--set", "output.vtk=false"],
+                       check=True)
     summary = json.loads((out / "summary.json").read_text())
     with open(out / "history.csv") as f:
         rows = list(csv.DictReader(f))
@@ -38,7 +40,10 @@ def main():
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--strain", type=float, default=0.25)
     ap.add_argument("--geodem", default="build/geodem")
+    ap.add_argument("--reuse", action="store_true", help="read the runs already in OUT")
     a = ap.parse_args()
+    global REUSE
+    REUSE = a.reuse
     out = Path(a.out)
     jobs = [(d, s) for d in ("drained", "undrained") for s in range(1, a.seeds + 1)]
     with ThreadPoolExecutor(2) as pool:

@@ -18,12 +18,14 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+REUSE = False  # --reuse: runs already in OUT are read, not run again
 CASES = {"walls": HERE / "scenario.toml", "periodic": HERE / "periodic.toml"}
 
 
 def run(geodem, scenario, out, seed):
-    subprocess.run([geodem, "run", str(scenario), "--out", str(out), "--overwrite", "--quiet",
-                    "--threads", "1", "--set", f"seed={seed}"], check=True)
+    if not REUSE or not (out / "summary.json").exists():
+        subprocess.run([geodem, "run", str(scenario), "--out", str(out), "--overwrite", "--quiet",
+                        "--threads", "1", "--set", f"seed={seed}"], check=True)
     summary = json.loads((out / "summary.json").read_text())
     with open(out / "history.csv") as f:
         rows = list(csv.DictReader(f))
@@ -39,7 +41,10 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--geodem", default="build/geodem")
+    ap.add_argument("--reuse", action="store_true", help="read the runs already in OUT")
     a = ap.parse_args()
+    global REUSE
+    REUSE = a.reuse
     out = Path(a.out)
     jobs = [(name, seed) for name in CASES for seed in range(1, a.seeds + 1)]
     with ThreadPoolExecutor(2) as pool:
