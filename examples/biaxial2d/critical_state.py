@@ -4,7 +4,8 @@ cell, at its three confining stresses, seeds 1 to N (two runs at a time), sheare
 strain: the critical state line q = M p' from the drained tests' ends, and where the undrained
 (constant-volume) stress paths end against it.
 
-    examples/biaxial2d/critical_state.py OUT [--seeds 3] [--strain 0.25] [--geodem build/geodem]
+    examples/biaxial2d/critical_state.py OUT [--seeds 3] [--strain 0.25] [--count 2000]
+                                         [--geodem build/geodem] [--reuse]
 
 Writes OUT/critical_state.md (the table of the README), OUT/critical_state.json and
 OUT/critical_state.png (copied to expected/ by scripts/refresh-examples.sh --all).
@@ -21,12 +22,14 @@ HERE = Path(__file__).resolve().parent
 REUSE = False  # --reuse: runs already in OUT are read, not run again
 
 
-def run(geodem, out, drainage, seed, strain):
+def run(geodem, out, drainage, seed, strain, count):
     if not REUSE or not (out / "summary.json").exists():
         subprocess.run([geodem, "run", str(HERE / "scenario.toml"), "--out", str(out), "--overwrite",
                         "--quiet", "--threads", "1", "--set", f"seed={seed}",
                         "--set", "sample.boundary=periodic", "--set", f"shear.drainage={drainage}",
-                        "--set", f"shear.max_axial_strain={strain}", "--set", "output.vtk=false"],
+                        "--set", f"shear.max_axial_strain={strain}", "--set", "output.vtk=false",
+                        "--set", f"sample.count={count}",
+                        "--set", f"sample.box=[1.0, {2.0 * count / 2000}]"],
                        check=True)
     summary = json.loads((out / "summary.json").read_text())
     with open(out / "history.csv") as f:
@@ -39,6 +42,7 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--strain", type=float, default=0.25)
+    ap.add_argument("--count", type=int, default=2000, help="discs (the box keeps their size)")
     ap.add_argument("--geodem", default="build/geodem")
     ap.add_argument("--reuse", action="store_true", help="read the runs already in OUT")
     a = ap.parse_args()
@@ -48,7 +52,7 @@ def main():
     jobs = [(d, s) for d in ("drained", "undrained") for s in range(1, a.seeds + 1)]
     with ThreadPoolExecutor(2) as pool:
         done = list(pool.map(lambda j: run(a.geodem, out / f"{j[0]}_seed{j[1]}", j[0], j[1],
-                                           a.strain), jobs))
+                                           a.strain, a.count), jobs))
     # The stress ratio at the end of each drained test: the critical state's M.
     ends = {"drained": [], "undrained": []}
     for (drainage, seed), (tests, _) in zip(jobs, done):
@@ -103,7 +107,8 @@ def main():
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
     ax.legend(fontsize=7)
-    ax.set_title(f"2000 discs, periodic cell, seeds 1-{a.seeds}: drained (dashed), undrained (solid)")
+    ax.set_title(f"{a.count} discs, periodic cell, seeds 1-{a.seeds}: drained (dashed), "
+                 "undrained (solid)")
     fig.tight_layout()
     fig.savefig(out / "critical_state.png", dpi=110)
 
