@@ -15,6 +15,7 @@
 #include "kinds/scenario_kind.hpp"
 #include "scene/scene_settings.hpp"
 #include "scene_binding.hpp"
+#include "cell_binding.hpp"
 #include "servo_binding.hpp"
 
 namespace py = pybind11;
@@ -106,6 +107,7 @@ PYBIND11_MODULE(geodem, m) {
   geodem::python::bind_scenes(m);
   geodem::python::bind_builders(m);
   geodem::python::bind_servos(m);
+  geodem::python::bind_cells(m);
   m.def(
       "load",
       [](const std::string& path) -> py::object {
