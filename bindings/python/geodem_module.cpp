@@ -9,13 +9,13 @@
 
 #include "base/error.hpp"
 #include "builder_binding.hpp"
+#include "cell_binding.hpp"
 #include "dict_to_toml.hpp"
 #include "io/checkpoint.hpp"
 #include "io/run_output.hpp"
 #include "kinds/scenario_kind.hpp"
 #include "scene/scene_settings.hpp"
 #include "scene_binding.hpp"
-#include "cell_binding.hpp"
 #include "servo_binding.hpp"
 
 namespace py = pybind11;
