@@ -6,8 +6,9 @@
 # periodic triaxial run its code) and the undrained triaxial (the drained ones run its
 # phases), and the 3D variants of thread determinism, the surface-pressure plate, the lab
 # triaxial, the periodic search's brute-force check and the rebuild-invariance run (their 2D
-# variants run the same loops; 3D code runs under the sanitizers in the other 3D tests). -O1 and line tables only (-g1): the build takes about
-# 40 % less than at -O2 and the reports keep file and line.
+# variants run the same loops; 3D code runs under the sanitizers in the other 3D tests).
+# -O1 and line tables only (-g1): the build takes about 40 % less than at -O2 and the reports
+# keep file and line.
 # Without MPI: Open MPI's own allocations would drown the leak report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
