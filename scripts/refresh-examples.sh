@@ -54,7 +54,8 @@ if ((all)); then
   /usr/bin/python3 examples/triaxial3d/compare_boundaries.py "$OUT/triaxial3d_boundaries"
   cp "$OUT/triaxial3d_boundaries/boundaries.png" "$OUT/triaxial3d_boundaries/boundaries.md" \
     examples/triaxial3d/expected/
-  /usr/bin/python3 examples/biaxial2d/critical_state.py "$OUT/biaxial2d_critical_state" --strain 0.2
+  /usr/bin/python3 examples/biaxial2d/critical_state.py "$OUT/biaxial2d_critical_state" --strain 0.2 \
+    --count 1000
   cp "$OUT/biaxial2d_critical_state/critical_state.png" \
     "$OUT/biaxial2d_critical_state/critical_state.md" examples/biaxial2d/expected/
   # The staged scene's seed table.
