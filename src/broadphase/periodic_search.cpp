@@ -66,8 +66,8 @@ void list_periodic_pairs(World<D>& world) {
                            " m across its faces " + std::to_string(k) +
                            ", less than three times the largest diameter plus the skin (" +
                            std::to_string(3.0 * reach) + " m): make the cell larger");
-    // Few grains in a large cell: bins of about one grain each are enough.
-    nb[k] = std::min(nb[k], 4 * static_cast<int>(std::cbrt(static_cast<double>(n))) + 8);
+    // Few grains in a large cell: bins of about one grain each are enough (n^(1/D) per axis).
+    nb[k] = std::min(nb[k], 4 * static_cast<int>(std::pow(static_cast<double>(n), 1.0 / D)) + 8);
   }
   // Bins in fractional coordinates, filled by a counting sort.
   const typename Dim<D>::Tensor h_inv = cell.h.inverse();

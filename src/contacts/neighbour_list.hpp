@@ -65,10 +65,6 @@ struct ContactExtra {
 struct CellImage {
   std::array<std::int8_t, 3> m{0, 0, 0};
   bool home() const { return m[0] == 0 && m[1] == 0 && m[2] == 0; }
-  CellImage reversed() const {
-    return {{static_cast<std::int8_t>(-m[0]), static_cast<std::int8_t>(-m[1]),
-             static_cast<std::int8_t>(-m[2])}};
-  }
 };
 
 template <int D>

@@ -66,7 +66,6 @@ class CellServo : public Controller<D> {
     }
   }
 
-  const std::array<Axis, D>& axes() const { return axes_; }
   void set_axis(int k, const Axis& a) {
     axes_[k] = a;
     sum_[k] = 0.0;
