@@ -66,9 +66,12 @@ class CellServo : public Controller<D> {
     }
   }
 
+  // A new stress target (or a change of control) starts the axis's integral term afresh; a
+  // new strain rate, or the same target again, keeps it.
   void set_axis(int k, const Axis& a) {
+    const Axis& old = axes_[k];
+    if (a.stress_controlled != old.stress_controlled || a.target != old.target) sum_[k] = 0.0;
     axes_[k] = a;
-    sum_[k] = 0.0;
   }
   void save_state(StateWriter& out) const override {
     for (const auto& a : axes_) out(a.stress_controlled), out(a.target), out(a.strain_rate);

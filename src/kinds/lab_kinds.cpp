@@ -1,4 +1,5 @@
-// The lab kinds: kind = "triaxial", "pullout", "interface_shear" (docs/lab_tests.md).
+// The lab kinds: kind = "triaxial" and its element tests ("isotropic", "oedometer",
+// "simple_shear", "cyclic_triaxial"), "pullout", "interface_shear" (docs/lab_tests.md).
 #include <algorithm>
 #include <cstdio>
 
@@ -26,7 +27,8 @@ std::string check_triaxial(const toml::table& root, const std::string& file, int
   const auto t = read_triaxial(root, file);
   check_memory(file, source_line(root, "sample.count"), "sample.count", t.dimension,
                static_cast<double>(t.count) * members_per_grain(t.grains, t.dimension));
-  return "kind = \"triaxial\", dimension " + std::to_string(t.dimension);
+  return "kind = \"" + std::string(lab_kind_name(t.kind)) + "\", dimension " +
+         std::to_string(t.dimension);
 }
 
 KindRun run_triaxial_kind(const LoadedScenario& l, const std::string& file, const RunOptions& opt,
@@ -106,6 +108,22 @@ KindRun run_interface_shear_kind(const LoadedScenario& l, const std::string& fil
 
 ScenarioKind triaxial_kind() {
   return {"triaxial", nullptr, true, single_run, check_triaxial, run_triaxial_kind};
+}
+// The element tests read their [material] as the triaxial kind does.
+const char* as_triaxial(const toml::table&) {
+  return "triaxial";
+}
+ScenarioKind isotropic_kind() {
+  return {"isotropic", as_triaxial, true, single_run, check_triaxial, run_triaxial_kind};
+}
+ScenarioKind oedometer_kind() {
+  return {"oedometer", as_triaxial, true, single_run, check_triaxial, run_triaxial_kind};
+}
+ScenarioKind simple_shear_kind() {
+  return {"simple_shear", as_triaxial, true, single_run, check_triaxial, run_triaxial_kind};
+}
+ScenarioKind cyclic_triaxial_kind() {
+  return {"cyclic_triaxial", as_triaxial, true, single_run, check_triaxial, run_triaxial_kind};
 }
 ScenarioKind pullout_kind() {
   return {"pullout", nullptr, true, pullout_series, check_pullout, run_pullout_kind};

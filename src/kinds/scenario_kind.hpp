@@ -65,6 +65,10 @@ double discs_in(double area, double r);
 // The entries, one file per family.
 ScenarioKind scene_kind();
 ScenarioKind triaxial_kind();
+ScenarioKind isotropic_kind();
+ScenarioKind oedometer_kind();
+ScenarioKind simple_shear_kind();
+ScenarioKind cyclic_triaxial_kind();
 ScenarioKind pullout_kind();
 ScenarioKind interface_shear_kind();
 ScenarioKind series_kind();

@@ -7,20 +7,19 @@
 #include <stdexcept>
 
 #include "base/error.hpp"
-#include "base/random.hpp"
 #include "base/text.hpp"
-#include "clumps/grain_mix.hpp"
 #include "contacts/bonds.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
 #include "io/step_loop.hpp"
 #include "lab/lab_phases.hpp"
+#include "lab/run_element_test.hpp"
 #include "lab/soil_parameters.hpp"
 #include "lab/triaxial_controllers.hpp"
+#include "lab/triaxial_sample.hpp"
 #include "lab/triaxial_test_state.hpp"
 #include "measure/measurements.hpp"
-#include "particles/random_cloud.hpp"
 #include "walls/lab_box.hpp"
 #include "world/world_state.hpp"
 
@@ -45,7 +44,7 @@ enum class Phase : std::uint8_t {
 template <int D>
 struct Lab {
   using Vec = typename Dim<D>::Vec;
-  static constexpr int kAxial = D - 1;
+  static constexpr int kDim = D, kAxial = D - 1;
   const TriaxialSettings& s;
   const RunOptions& opt;
   World<D> w;
@@ -67,13 +66,15 @@ struct Lab {
   std::vector<double> s1_peaks, s3_peaks;
   std::uint64_t test = 0;  // index of the confining stress under test
   Shear<D> shear;
+  ElementTest<D> element;  // the loading program of an element test
 
   Lab(const TriaxialSettings& settings, const RunOptions& options)
       : s(settings),
         opt(options),
         progress(options.quiet),
         vtk(options.out_dir),
-        checkpoints("triaxial", D, settings.resolved, options.out_dir, settings.checkpoint) {
+        checkpoints(lab_kind_name(settings.kind), D, settings.resolved, options.out_dir,
+                    settings.checkpoint) {
     checkpoints.outputs({&prep_csv, &history});
     vtk.with_contacts(s.vtk_contacts);
   }
@@ -99,6 +100,7 @@ struct Lab {
     archive_json(a, prep), archive_json(a, tests);
     a(s1_peaks), a(s3_peaks);
     shear.visit(a);
+    element.visit(a);
   }
 
   // After a whole step: a checkpoint when due, and the stop on a signal. Checkpoints are
@@ -154,33 +156,10 @@ struct Lab {
   }
   bool bonds() const { return s.bonds_create != "none"; }
 
-  void build() {
-    w.materials = {s.grain, s.wall};
-    Vec size;
-    for (int k = 0; k < D; ++k) size[k] = s.box[static_cast<std::size_t>(k)];
-    box =
-        s.periodic ? LabBox<D>::periodic_cell(w, size) : LabBox<D>::add_to(w, Vec::Zero(), size, 1);
-    w.resolve_pair_laws();
-    Random rng(s.seed);
-    try {
-      if (s.grains.round_only()) {
-        const double mean =
-            mean_radius_for_porosity<D>(size.prod(), s.count, s.initial_porosity, s.radius_fuzz);
-        const auto grains = random_cloud<D>(Vec::Zero(), size, s.count, mean, s.radius_fuzz, rng);
-        w.particles.reserve(grains.size());
-        for (const auto& g : grains) w.particles.add(g.centre, g.radius, s.grain.density, 0);
-      } else {
-        add_random_grains<D>(w, resolve_kinds<D>(s.grains), Vec::Zero(), size, s.count,
-                             s.initial_porosity, s.radius_fuzz, s.grain.density, 0, rng);
-      }
-    } catch (const std::runtime_error& e) {
-      throw InputError(s.file, 0, "sample.initial_porosity", e.what());
-    }
-    w.auto_dt = true;
-    w.dt_safety = s.dt_safety;
-    w.dt_update_interval = s.dt_update_interval;
-    w.sort_interval = 10;
-    w.threads = opt.threads;
+  void build() { box = build_triaxial_sample(w, s, opt.threads); }
+  std::vector<std::string> history_columns() const {
+    return s.kind == LabKind::kTriaxial ? triaxial_history_columns<D>(bonds(), s.undrained)
+                                        : element_test_columns(s.kind);
   }
 
   void install_controllers(bool new_servos) {
@@ -188,7 +167,14 @@ struct Lab {
                                 : phase == Phase::kCompression ? TriaxialStage::kCompression
                                 : phase == Phase::kDone        ? TriaxialStage::kDone
                                                                : TriaxialStage::kConsolidation;
-    install_triaxial_controllers(w, box, s, stage, sigma3(), new_servos, servos);
+    if (s.kind == LabKind::kTriaxial || stage != TriaxialStage::kCompression) {
+      install_triaxial_controllers(w, box, s, stage, sigma3(), new_servos, servos);
+      return;
+    }
+    // An element test's program: the consolidation's servos, driven by the program's step.
+    install_triaxial_controllers(w, box, s, TriaxialStage::kConsolidation, sigma3(), new_servos,
+                                 servos);
+    install_element_drives(*this);
   }
 
   void start() {
@@ -222,8 +208,7 @@ struct Lab {
     load_world_state(win, w);
     prep_csv.resume_rows(opt.out_dir + "/preparation.csv", triaxial_prep_columns(), prep_rows);
     if (tests_begun)
-      history.resume_rows(opt.out_dir + "/history.csv",
-                          triaxial_history_columns<D>(bonds(), s.undrained), history_rows);
+      history.resume_rows(opt.out_dir + "/history.csv", history_columns(), history_rows);
     checkpoints.resume_clock(wall_before);
   }
 
@@ -292,7 +277,7 @@ struct Lab {
     prep["steps"] = w.step;
     w.controllers.clear();
     prepared = w;
-    history.open(opt.out_dir + "/history.csv", triaxial_history_columns<D>(bonds(), s.undrained));
+    history.open(opt.out_dir + "/history.csv", history_columns());
     if (s.vtk) vtk.write(prepared);
     test = 0;
     begin_test();
@@ -350,6 +335,10 @@ struct Lab {
     shear.height0 = box.size(w)[kAxial];
     shear.d0 = equivalent_diameter<D>(solid_volume(w) / static_cast<double>(body_count(w)));
     phase = Phase::kCompression;
+    if (s.kind != LabKind::kTriaxial) {
+      begin_element_test(*this);
+      return;
+    }
     install_controllers(false);
     shear.ref = box.size(w);
     shear.next_record = 0.0;
@@ -360,6 +349,11 @@ struct Lab {
   }
 
   void compression() {
+    if (s.kind != LabKind::kTriaxial) {
+      run_element_test(*this);
+      finish_test();
+      return;
+    }
     const double d_eps = s.max_axial_strain / s.history_points;
     Shear<D>& h = shear;
     step_loop(
@@ -424,9 +418,15 @@ struct Lab {
   // The test's results; then the next confining stress, or the end.
   void finish_test() {
     if (s.vtk) vtk.write(w);
-    tests.push_back(test_results(shear, s, sigma3(), w, bonds()));
-    s1_peaks.push_back(tests.back()["sigma1_peak"].get<double>());
-    s3_peaks.push_back(tests.back()["sigma3_peak"].get<double>());
+    if (s.kind == LabKind::kTriaxial) {
+      tests.push_back(test_results(shear, s, sigma3(), w, bonds()));
+      s1_peaks.push_back(tests.back()["sigma1_peak"].get<double>());
+      s3_peaks.push_back(tests.back()["sigma3_peak"].get<double>());
+    } else {
+      tests.push_back(element_test_results(*this));
+      tests.back()[s.kind == LabKind::kSimpleShear ? "normal_stress" : "confining_stress"] =
+          sigma3();
+    }
     if (++test < s.confining_stresses.size()) {
       begin_test();
     } else {
@@ -464,24 +464,31 @@ struct Lab {
 template <int D>
 nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
   Lab<D> lab(s, opt);
-  run_lab_phases(lab, "triaxial", s.resolved, opt);
+  const std::string kind = lab_kind_name(s.kind);
+  run_lab_phases(lab, kind, s.resolved, opt);
   nlohmann::json results;
   results["preparation"] = lab.prep;
   results["tests"] = lab.tests;
   if (lab.tests.size() == 1)
     for (auto& [k, v] : lab.tests[0].items()) results[k] = v;  // the contract's flat keys
-  if (s.confining_stresses.size() > 1) {
+  if (s.kind == LabKind::kSimpleShear && s.confining_stresses.size() > 1) {
+    std::vector<double> sn, tau;
+    for (const auto& r : lab.tests)
+      sn.push_back(r["normal_stress_at_peak"]), tau.push_back(r["tau_peak"]);
+    const ShearEnvelope e = fit_shear_envelope(sn, tau);
+    results["shear_envelope"] = {{"cohesion", e.cohesion}, {"phi_deg", e.phi_deg}};
+  } else if (s.kind == LabKind::kTriaxial && s.confining_stresses.size() > 1) {
     const MohrCoulomb mc = fit_mohr_coulomb(lab.s1_peaks, lab.s3_peaks);
     results["mohr_coulomb"] = {{"cohesion", mc.cohesion}, {"phi_deg", mc.phi_deg}};
   }
-  return write_run_summary(opt.out_dir, "triaxial", "completed", s.resolved, results,
+  return write_run_summary(opt.out_dir, kind, "completed", s.resolved, results,
                            timing_json(lab.w, lab.elapsed(), lab.total_steps, opt.threads));
 }
 
 }  // namespace
 
 nlohmann::json run_triaxial(const TriaxialSettings& settings, const RunOptions& options) {
-  return summarise_interruption("triaxial", settings.resolved, options, [&] {
+  return summarise_interruption(lab_kind_name(settings.kind), settings.resolved, options, [&] {
     return settings.dimension == 2 ? run<2>(settings, options) : run<3>(settings, options);
   });
 }

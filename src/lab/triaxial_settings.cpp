@@ -13,13 +13,41 @@ namespace {
 double tan_deg(double deg) {
   return std::tan(deg * std::numbers::pi / 180.0);
 }
+
+// [shear]: the compression tests of the triaxial kind.
+void read_shear(TableReader& r, TriaxialSettings& s) {
+  auto sh = r.table("shear");
+  if (!sh)
+    r.fail("shear", "missing [shear] table (strain_rate, max_axial_strain, confining_stress)");
+  s.strain_rate = sh->in_range("strain_rate", 0.02, 1e-9, 100.0);
+  s.max_axial_strain = sh->in_range("max_axial_strain", 0.15, 1e-4, 0.6);
+  s.confining_stresses = sh->numbers("confining_stress", {s.compaction_stress}, 1);
+  for (double v : s.confining_stresses)
+    if (!(v > 0.0)) sh->fail("confining_stress", "confining stresses must be positive (Pa)");
+  s.shear_damping = sh->in_range("damping", 0.1, 0.0, 0.99);
+  // The cell servo corrects a fraction of the stress error each step against the packing's
+  // affine stiffness (controllers/cell_servo.hpp): a smaller fraction than the wall servo's.
+  s.servo_gain = sh->in_range("servo_gain", s.periodic ? 0.1 : 0.5, 1e-3, 1.0);
+  s.undrained = sh->choice("drainage", "drained", {"drained", "undrained"}) == "undrained";
+  s.consolidation_max_steps =
+      static_cast<std::uint64_t>(sh->integer("consolidation_max_steps", 100'000, 1, (1LL << 50)));
+  s.history_points = static_cast<int>(sh->integer("history_points", 300, 10, 1000000));
+  s.vtk_at_strains = sh->numbers("vtk_at_strains", {}, 0);
+  sh->finish();
+}
+
 }  // namespace
 
 TriaxialSettings read_triaxial(const toml::table& root, const std::string& file) {
   TriaxialSettings s;
   s.file = file;
   TableReader r(root, "", file, &s.resolved);
-  r.choice("kind", "triaxial", {"triaxial"});
+  const std::string kind =
+      r.choice("kind", "triaxial",
+               {"triaxial", "isotropic", "oedometer", "simple_shear", "cyclic_triaxial"});
+  for (LabKind k : {LabKind::kTriaxial, LabKind::kIsotropic, LabKind::kOedometer,
+                    LabKind::kSimpleShear, LabKind::kCyclicTriaxial})
+    if (kind == lab_kind_name(k)) s.kind = k;
   s.dimension = static_cast<int>(r.integer("dimension", 3, 2, 3));
   s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, (1LL << 62)));
   r.string("title", "");
@@ -113,24 +141,16 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
       static_cast<std::uint64_t>(c->integer("max_steps", 2'000'000, 1, (1LL << 50)));
   c->finish();
 
-  auto sh = r.table("shear");
-  if (!sh)
-    r.fail("shear", "missing [shear] table (strain_rate, max_axial_strain, confining_stress)");
-  s.strain_rate = sh->in_range("strain_rate", 0.02, 1e-9, 100.0);
-  s.max_axial_strain = sh->in_range("max_axial_strain", 0.15, 1e-4, 0.6);
-  s.confining_stresses = sh->numbers("confining_stress", {s.compaction_stress}, 1);
-  for (double v : s.confining_stresses)
-    if (!(v > 0.0)) sh->fail("confining_stress", "confining stresses must be positive (Pa)");
-  s.shear_damping = sh->in_range("damping", 0.1, 0.0, 0.99);
-  // The cell servo corrects a fraction of the stress error each step against the packing's
-  // affine stiffness (controllers/cell_servo.hpp): a smaller fraction than the wall servo's.
-  s.servo_gain = sh->in_range("servo_gain", s.periodic ? 0.1 : 0.5, 1e-3, 1.0);
-  s.undrained = sh->choice("drainage", "drained", {"drained", "undrained"}) == "undrained";
-  s.consolidation_max_steps =
-      static_cast<std::uint64_t>(sh->integer("consolidation_max_steps", 100'000, 1, (1LL << 50)));
-  s.history_points = static_cast<int>(sh->integer("history_points", 300, 10, 1000000));
-  s.vtk_at_strains = sh->numbers("vtk_at_strains", {}, 0);
-  sh->finish();
+  if (s.kind != LabKind::kTriaxial) {
+    auto l = r.table("loading");
+    if (!l) r.fail("loading", "missing [loading] table (the " + kind + " test's program)");
+    read_loading(*l, s);
+    l->finish();
+    if (s.kind == LabKind::kSimpleShear && !s.periodic)
+      sample->fail("boundary", "simple_shear runs in a periodic cell: boundary = \"periodic\"");
+  } else {
+    read_shear(r, s);
+  }
 
   if (auto o = r.table("output")) {
     s.vtk = o->boolean("vtk", true);

@@ -1,6 +1,8 @@
 // Settings of a `kind = "triaxial"` scenario (docs/lab_tests.md): the sample, its
 // preparation (radius growth to an isotropic stress, then friction reduction to a
-// target porosity) and one compression test per confining stress.
+// target porosity) and one compression test per confining stress. The element tests
+// (isotropic, oedometer, simple shear, cyclic triaxial) share the sample and its
+// preparation and replace the compression by their own loading program.
 #pragma once
 
 #include <cstdint>
@@ -11,12 +13,14 @@
 #include "clumps/grain_mix.hpp"
 #include "io/checkpoint.hpp"
 #include "io/toml_reader.hpp"
+#include "lab/element_test_settings.hpp"
 #include "materials/material.hpp"
 
 namespace geodem {
 
 struct TriaxialSettings {
   std::string file;
+  LabKind kind = LabKind::kTriaxial;
   int dimension = 3;
   std::uint64_t seed = 1;
   // [sample]
@@ -55,8 +59,10 @@ struct TriaxialSettings {
   // (3D) or all (2D) of the axial rate); the excess pore pressure is recorded.
   bool undrained = false;
   std::uint64_t consolidation_max_steps = 100'000;
+  std::uint64_t stage_max_steps = 200'000;  // per stress step of an isotropic or oedometer test
   int history_points = 300;
   std::vector<double> vtk_at_strains;
+  ElementTestSettings element;  // [loading] of the element tests
   // [output]
   bool vtk = true, plots = true;
   bool vtk_contacts = false;  // the contact network (force chains) in each VTK frame

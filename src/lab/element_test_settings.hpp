@@ -1,0 +1,45 @@
+// Settings of the element tests that share the triaxial kind's sample and preparation
+// (docs/lab_tests.md): kind = "isotropic", "oedometer", "simple_shear", "cyclic_triaxial".
+// Their loading program is read from the [loading] table in place of [shear].
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace geodem {
+
+class TableReader;
+
+enum class LabKind : std::uint8_t {
+  kTriaxial,       // drained or undrained compression (lab/run_triaxial.cpp)
+  kIsotropic,      // isotropic loading and unloading by steps of mean stress
+  kOedometer,      // axial loading and unloading by steps, lateral strain zero
+  kSimpleShear,    // periodic cell sheared at constant normal stress or constant volume
+  kCyclicTriaxial  // strain-controlled cycles of axial strain at constant confining stress
+};
+
+const char* lab_kind_name(LabKind k);
+
+struct ElementTestSettings {
+  // isotropic: mean stresses; oedometer: axial stresses (Pa). Applied in order, each held
+  // until the sample is at rest: loading steps, then unloading steps.
+  std::vector<double> stresses;
+  // simple_shear
+  bool constant_volume = false;  // control = "constant_volume"; else constant normal stress
+  double shear_rate = 0.02;      // 1/s
+  double max_shear_strain = 0.3;
+  // cyclic_triaxial: single amplitudes of axial strain, in increasing order, on one sample
+  std::vector<double> amplitudes;
+  int cycles = 2;              // full cycles per amplitude; the last one is measured
+  int steps_per_cycle = 2000;  // slower than strain_rate where a cycle would be shorter
+  int points_per_cycle = 200;  // rows of history.csv per cycle
+};
+
+struct TriaxialSettings;
+
+// Reads the [loading] table of an element test into `s` (its confining stresses, rates,
+// damping, servo and history settings, and the program of `s.element`).
+void read_loading(TableReader& loading, TriaxialSettings& s);
+
+}  // namespace geodem

@@ -1,0 +1,367 @@
+// The loading programs of the element tests (docs/lab_tests.md), run by the triaxial kind's
+// lab (lab/run_triaxial.cpp) once its sample is prepared and consolidated:
+// - isotropic: every axis held at each mean stress of `stresses` in turn, until at rest;
+// - oedometer: the axial stress held at each of `stresses`, the lateral axes fixed;
+// - simple_shear: the periodic cell sheared, L_xn = shear_rate (x the first axis, n the
+//   last), the normal axis at the consolidation stress (or fixed: constant volume), the
+//   others fixed;
+// - cyclic_triaxial: the axial strain cycled between +A and -A around the consolidated
+//   state, the lateral axes at the confining stress, `cycles` loops per amplitude.
+// The functions take the lab runner; its members: w, box, s, servos, element, total_steps,
+// history, progress, vtk, run_until, after_step, porosity, sigma3.
+#pragma once
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+
+#include "base/text.hpp"
+#include "controllers/axial_strain_rate.hpp"
+#include "controllers/cell_servo.hpp"
+#include "controllers/stress_servo.hpp"
+#include "io/step_loop.hpp"
+#include "lab/element_test_state.hpp"
+#include "measure/measurements.hpp"
+#include "walls/lab_box.hpp"
+
+namespace geodem {
+
+// One axis of a loading step: a stress target, or a strain rate (compression positive).
+struct AxisDrive {
+  bool stress = false;
+  double target = 0.0;
+  double rate = 0.0;
+};
+
+// Installs the controllers that drive each axis as `drives` says, with the periodic cell's
+// shear rate L_xn; the servos made at consolidation (lab/triaxial_controllers.hpp) keep their
+// integral terms while their target stays.
+template <int D>
+void drive_axes(World<D>& w, const LabBox<D>& box, const std::array<AxisDrive, D>& drives,
+                double shear_rate, std::vector<std::shared_ptr<Controller<D>>>& servos) {
+  w.controllers.clear();
+  if (box.periodic) {
+    auto cell = std::static_pointer_cast<CellServo<D>>(servos[0]);
+    for (int k = 0; k < D; ++k)
+      cell->set_axis(k, {drives[k].stress, drives[k].target, -drives[k].rate});
+    w.cell.vel_grad(0, D - 1) = shear_rate;
+    w.controllers.push_back(cell);
+    return;
+  }
+  for (int k = 0; k < D; ++k) {
+    if (drives[k].stress) {
+      auto servo = std::static_pointer_cast<StressServo<D>>(servos[static_cast<std::size_t>(k)]);
+      servo->set_target(drives[k].target);
+      w.controllers.push_back(servo);
+    } else {
+      w.controllers.push_back(std::make_shared<AxialStrainRate<D>>(box, k, drives[k].rate));
+    }
+  }
+}
+
+// The axial stress and the mean lateral stress (compression positive).
+template <int D>
+std::array<double, 2> axial_and_lateral(const World<D>& w, const LabBox<D>& box) {
+  using Tensor = typename Dim<D>::Tensor;
+  const Tensor sigma = box.periodic ? cell_stress(w) : Tensor::Zero().eval();
+  const auto stress = [&](int k) { return box.periodic ? sigma(k, k) : box.stress(w, k); };
+  double lateral = 0.0;
+  for (int k = 0; k < D - 1; ++k) lateral += stress(k) / (D - 1);
+  return {stress(D - 1), lateral};
+}
+
+// Cyclic: the axial strain the loading heads for after `turn` turning points: +A, -A, ...,
+// +A (after `cycles` loops), then back to 0. Even turns go up (compression), odd ones down.
+inline double cycle_target(std::uint64_t turn, double amplitude, int cycles) {
+  if (turn == 2 * static_cast<std::uint64_t>(cycles) + 1) return 0.0;
+  return turn % 2 == 0 ? amplitude : -amplitude;
+}
+
+template <class Lab>
+void install_element_drives(Lab& lab) {
+  constexpr int D = Lab::kDim;
+  const auto& e = lab.element;
+  const auto& p = lab.s.element;
+  std::array<AxisDrive, D> d{};
+  double shear = 0.0;
+  switch (lab.s.kind) {
+    case LabKind::kIsotropic:
+      for (auto& a : d) a = {true, p.stresses[e.stage], 0.0};
+      break;
+    case LabKind::kOedometer:
+      d[D - 1] = {true, p.stresses[e.stage], 0.0};
+      break;
+    case LabKind::kSimpleShear:
+      if (!p.constant_volume) d[D - 1] = {true, lab.sigma3(), 0.0};
+      shear = p.shear_rate;
+      break;
+    case LabKind::kCyclicTriaxial:
+      for (int k = 0; k < D - 1; ++k) d[k] = {true, lab.sigma3(), 0.0};
+      d[D - 1].rate = (e.turn % 2 == 0 ? 1.0 : -1.0) * e.rate;
+      break;
+    case LabKind::kTriaxial:
+      break;
+  }
+  drive_axes<D>(lab.w, lab.box, d, shear, lab.servos);
+}
+
+template <class Lab>
+double void_ratio(const Lab& lab) {
+  const double n = lab.porosity();
+  return n / (1.0 - n);
+}
+
+// A row of an isotropic or oedometer test; a point at rest is also kept for the results.
+template <class Lab>
+void stress_step_row(Lab& lab, double unbalanced, bool at_rest, double target) {
+  constexpr int D = Lab::kDim;
+  auto& e = lab.element;
+  const auto [sa, sl] = axial_and_lateral(lab.w, lab.box);
+  const double ea = lab.box.strain(lab.w, D - 1, e.ref);
+  const double ev = lab.box.volumetric_strain(lab.w, e.ref);
+  const double void_r = void_ratio(lab);
+  lab.history.row({static_cast<double>(e.stage), static_cast<double>(lab.w.step), lab.w.time,
+                   target, sa, sl, (sa + (D - 1) * sl) / D, sa - sl, ea, ev, void_r,
+                   coordination_number(lab.w), unbalanced, at_rest ? 1.0 : 0.0});
+  if (!at_rest) return;
+  auto& p = e.steps;
+  p.target.push_back(target), p.sigma_axial.push_back(sa), p.sigma_lateral.push_back(sl);
+  p.axial_strain.push_back(ea), p.volumetric_strain.push_back(ev), p.void_ratio.push_back(void_r);
+}
+
+// Cyclic: the rate of this amplitude: the test's strain rate, or slower where a cycle would
+// take fewer than steps_per_cycle steps (a small amplitude).
+template <class Lab>
+void begin_amplitude(Lab& lab) {
+  auto& e = lab.element;
+  const auto& p = lab.s.element;
+  const double a = p.amplitudes[e.stage];
+  e.turn = 0, e.path = 0.0, e.next_record = 0.0;
+  constexpr int D = Lab::kDim;
+  e.last_strain = lab.box.strain(lab.w, D - 1, e.ref);
+  e.last_gamma = e.last_strain;
+  for (int k = 0; k < D - 1; ++k) e.last_gamma -= lab.box.strain(lab.w, k, e.ref) / (D - 1);
+  e.rate = std::min(lab.s.strain_rate, 4.0 * a / (p.steps_per_cycle * lab.w.dt));
+}
+
+// After consolidation: the reference state, the first point, the first step's drives.
+template <class Lab>
+void begin_element_test(Lab& lab) {
+  auto& e = lab.element;
+  e = {};
+  e.ref = lab.box.size(lab.w);
+  e.porosity0 = lab.porosity();
+  if (lab.s.kind == LabKind::kCyclicTriaxial) begin_amplitude(lab);
+  if (lab.s.kind == LabKind::kIsotropic || lab.s.kind == LabKind::kOedometer)
+    stress_step_row(lab, unbalanced_force_ratio(lab.w), true, lab.sigma3());
+  install_element_drives(lab);
+}
+
+template <class Lab>
+void run_stress_steps(Lab& lab) {
+  constexpr int D = Lab::kDim;
+  auto& e = lab.element;
+  const auto& stresses = lab.s.element.stresses;
+  const bool iso = lab.s.kind == LabKind::kIsotropic;
+  while (e.stage < stresses.size()) {
+    const double target = stresses[e.stage];
+    const auto on_target = [&] {
+      for (int k = iso ? 0 : D - 1; k < D; ++k)
+        if (std::abs(lab.box.stress(lab.w, k) - target) > lab.s.stress_tolerance * target)
+          return false;
+      return true;
+    };
+    const std::string name = cat("step ", e.stage + 1, "/", stresses.size(), " (", target, " Pa)");
+    const bool met = lab.run_until(name, lab.s.stage_max_steps, 200, [&](double unb) {
+      const bool rest = on_target() && unb < lab.s.unbalanced_tolerance;
+      stress_step_row(lab, unb, rest, target);
+      return rest;
+    });
+    if (!met) {
+      if (!on_target())
+        throw std::runtime_error(cat("the sample did not reach ", target, " Pa in ",
+                                     lab.s.stage_max_steps,
+                                     " steps; raise loading.stage_max_steps"));
+      e.warning = cat("step ", e.stage + 1,
+                      " ended on its stress with the unbalanced force above "
+                      "the tolerance after loading.stage_max_steps");
+      stress_step_row(lab, unbalanced_force_ratio(lab.w), true, target);
+    }
+    if (lab.s.vtk) lab.vtk.write(lab.w);
+    if (++e.stage < stresses.size()) install_element_drives(lab);
+  }
+}
+
+// Simple shear: the shear strain is the cell's tilt, h_xn / h_nn.
+template <class Lab>
+double cell_shear_strain(const Lab& lab) {
+  constexpr int n = Lab::kDim - 1;
+  return lab.w.cell.h(0, n) / lab.w.cell.h(n, n);
+}
+
+template <class Lab>
+void simple_shear_row(Lab& lab) {
+  constexpr int D = Lab::kDim, n = D - 1;
+  auto& e = lab.element;
+  const auto sigma = cell_stress(lab.w);
+  // Compression positive: the shear stress that resists a positive L_xn is -sigma_xn.
+  const double tau = -sigma(0, n), sn = sigma(n, n), gamma = cell_shear_strain(lab);
+  const auto principal =
+      Eigen::SelfAdjointEigenSolver<typename Dim<D>::Tensor>(sigma, Eigen::EigenvaluesOnly)
+          .eigenvalues();  // ascending
+  const double s1 = principal[D - 1], s3 = principal[0];
+  const double phi =
+      std::asin(std::clamp((s1 - s3) / (s1 + s3), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  const double en = lab.box.strain(lab.w, n, e.ref), ev = lab.box.volumetric_strain(lab.w, e.ref);
+  const double void_r = void_ratio(lab);
+  lab.history.row({static_cast<double>(lab.test), static_cast<double>(lab.w.step), lab.w.time,
+                   gamma, en, ev, sn, tau, tau / sn, s1, s3, phi, sigma.trace() / D, void_r,
+                   coordination_number(lab.w), unbalanced_force_ratio(lab.w)});
+  auto& c = e.curve;
+  c.shear_strain.push_back(gamma), c.shear_stress.push_back(tau), c.normal_stress.push_back(sn);
+  c.normal_strain.push_back(en), c.phi_mobilised_deg.push_back(phi), c.void_ratio.push_back(void_r);
+  const double max = lab.s.element.max_shear_strain;
+  lab.progress.update(cat("simple shear ", lab.test + 1, "/", lab.s.confining_stresses.size()),
+                      lab.w.step, lab.w.time, gamma / max, "tau/sigma_n " + format_sig(tau / sn),
+                      (static_cast<double>(lab.test) + gamma / max) /
+                          static_cast<double>(lab.s.confining_stresses.size()));
+}
+
+template <class Lab>
+void run_simple_shear(Lab& lab) {
+  auto& e = lab.element;
+  const double max = lab.s.element.max_shear_strain, rate = lab.s.element.shear_rate;
+  const double every = max / lab.s.history_points;
+  step_loop(
+      lab.w, lab.total_steps, [&] { return cell_shear_strain(lab) < max; },
+      [&] {
+        const double next = cell_shear_strain(lab) + 2.0 * rate * lab.w.dt;
+        return next >= e.next_record || next >= max;
+      },
+      [&] {
+        const double g = cell_shear_strain(lab);
+        if (lab.w.measure_this_step && (g >= e.next_record || g >= max)) {
+          while (e.next_record <= g) e.next_record += every;
+          simple_shear_row(lab);
+        }
+        return false;
+      },
+      [&] { return lab.after_step(); });
+  lab.w.cell.vel_grad(0, Lab::kDim - 1) = 0.0;
+}
+
+template <class Lab>
+void run_cycles(Lab& lab) {
+  constexpr int D = Lab::kDim;
+  auto& e = lab.element;
+  const auto& p = lab.s.element;
+  const std::uint64_t last_turn = 2 * static_cast<std::uint64_t>(p.cycles) + 1;
+  // Shear stress and strain of the loop integral: tau = q / 2, gamma = eps_a - eps_r.
+  const auto tau_gamma = [&](double& eps) {
+    const auto [sa, sl] = axial_and_lateral(lab.w, lab.box);
+    eps = lab.box.strain(lab.w, D - 1, e.ref);
+    double er = 0.0;
+    for (int k = 0; k < D - 1; ++k) er += lab.box.strain(lab.w, k, e.ref) / (D - 1);
+    return std::array<double, 4>{0.5 * (sa - sl), eps - er, sa, sl};
+  };
+  while (e.stage < p.amplitudes.size()) {
+    const double amp = p.amplitudes[e.stage];
+    const double every = 4.0 * amp / p.points_per_cycle;
+    step_loop(
+        lab.w, lab.total_steps, [&] { return e.turn <= last_turn; },
+        [&] { return e.path + 2.0 * e.rate * lab.w.dt >= e.next_record; },
+        [&] {
+          // This step's stresses were summed in the configuration it started from: they pair
+          // with the strains before its deformation (a pairing one step off would add a loop
+          // area of about -2 / (pi steps_per_cycle) to the damping ratio).
+          double eps = 0.0;
+          const auto [tau, gamma_now, sa, sl] = tau_gamma(eps);
+          const double gamma = e.last_gamma, eps_then = e.last_strain;
+          e.path += std::abs(eps - e.last_strain);
+          e.last_strain = eps, e.last_gamma = gamma_now;
+          e.loop.add(tau, gamma);
+          if (lab.w.measure_this_step && e.path >= e.next_record) {
+            while (e.next_record <= e.path) e.next_record += every;
+            lab.history.row({static_cast<double>(e.stage), static_cast<double>(e.turn / 2),
+                             static_cast<double>(lab.w.step), lab.w.time, eps, eps - gamma_now,
+                             gamma_now, sa, sl, sa - sl, (sa + (D - 1) * sl) / D, void_ratio(lab),
+                             unbalanced_force_ratio(lab.w)});
+            lab.progress.update(cat("cyclic amplitude ", e.stage + 1, "/", p.amplitudes.size()),
+                                lab.w.step, lab.w.time,
+                                static_cast<double>(e.turn) / static_cast<double>(last_turn + 1),
+                                "q " + format_sig(sa - sl) + " Pa");
+          }
+          const double target = cycle_target(e.turn, amp, p.cycles);
+          if (e.turn % 2 == 0 ? eps < target : eps > target) return false;
+          if (e.turn % 2 == 0) {  // at +A: a loop closes, the next one starts
+            if (e.loop.started) e.loops.push_back(e.loop.result());
+            e.loop.started = 0;
+            if (e.turn + 1 < last_turn)
+              e.loop.start(tau, gamma), e.loop.turn_high(tau, gamma, eps_then);
+          } else if (e.turn != last_turn) {  // at -A
+            e.loop.turn_low(tau, gamma, eps_then);
+          }
+          ++e.turn;
+          if (e.turn <= last_turn) install_element_drives(lab);
+          return false;
+        },
+        [&] { return lab.after_step(); });
+    if (lab.s.vtk) lab.vtk.write(lab.w);
+    if (++e.stage < p.amplitudes.size()) {
+      begin_amplitude(lab);
+      install_element_drives(lab);
+    }
+  }
+}
+
+template <class Lab>
+void run_element_test(Lab& lab) {
+  switch (lab.s.kind) {
+    case LabKind::kIsotropic:
+    case LabKind::kOedometer:
+      run_stress_steps(lab);
+      break;
+    case LabKind::kSimpleShear:
+      run_simple_shear(lab);
+      break;
+    case LabKind::kCyclicTriaxial:
+      run_cycles(lab);
+      break;
+    case LabKind::kTriaxial:
+      break;
+  }
+}
+
+// A finished element test's results (summary.json).
+template <class Lab>
+nlohmann::json element_test_results(const Lab& lab) {
+  const auto& e = lab.element;
+  nlohmann::json r;
+  switch (lab.s.kind) {
+    case LabKind::kIsotropic:
+    case LabKind::kOedometer:
+      r = stress_step_results(e.steps, lab.s.kind, Lab::kDim);
+      break;
+    case LabKind::kSimpleShear:
+      r = simple_shear_results(e.curve);
+      r["control"] = lab.s.element.constant_volume ? "constant_volume" : "constant_stress";
+      break;
+    case LabKind::kCyclicTriaxial:
+      r = cyclic_results(lab.s.element.amplitudes, lab.s.element.cycles, e.loops);
+      r["confining_stress"] = lab.sigma3();
+      break;
+    case LabKind::kTriaxial:
+      break;
+  }
+  r["porosity_initial"] = e.porosity0;
+  r["grains"] = body_count(lab.w);
+  r["steps"] = lab.w.step;
+  if (!e.warning.empty()) r["warning"] = e.warning;
+  return r;
+}
+
+}  // namespace geodem

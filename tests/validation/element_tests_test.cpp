@@ -1,0 +1,184 @@
+// The element tests on small samples (docs/lab_tests.md): isotropic and oedometric steps
+// end at rest on their stresses within 1 %; the oedometer's lateral strain stays zero (the
+// axial strain equals the volumetric one to rounding) and K0 < 1 on loading; simple shear at
+// constant volume keeps the volume to rounding and its shear strain is the imposed rate times
+// the time (1e-9), the lateral strain staying zero; at constant normal stress the servo holds the normal stress within 1 %;
+// cyclic loading gives G / Gmax falling and the damping ratio rising with the amplitude.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "base/text.hpp"
+#include "lab/run_triaxial.hpp"
+#include "test_util.hpp"
+
+namespace geodem::test {
+namespace {
+
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;
+  std::size_t col(const std::string& name) const {
+    const auto it = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(it, header.end()) << name;
+    return static_cast<std::size_t>(it - header.begin());
+  }
+};
+
+Csv read_csv(const std::string& path) {
+  Csv c;
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::stringstream hs(line);
+  for (std::string x; std::getline(hs, x, ',');) c.header.push_back(x);
+  while (std::getline(in, line)) {
+    std::stringstream ls(line);
+    std::vector<double> r;
+    for (std::string x; std::getline(ls, x, ',');) r.push_back(std::stod(x));
+    c.rows.push_back(r);
+  }
+  return c;
+}
+
+// A dense sample of 400 discs (2D) or 300 spheres (3D) at 100 kPa.
+TriaxialSettings small_sample(LabKind kind, int dimension, bool periodic) {
+  TriaxialSettings s;
+  s.kind = kind;
+  s.periodic = periodic;
+  s.dimension = dimension;
+  s.box = std::vector<double>(static_cast<std::size_t>(dimension), 1.0);
+  s.count = dimension == 2 ? 400 : 300;
+  s.grain.young = 5e7;
+  s.grain.friction = std::tan(30.0 * std::numbers::pi / 180.0);
+  s.grain.density = 2600;
+  s.wall = s.grain;
+  s.wall.friction = 0.0;
+  s.compaction_stress = 1e5;
+  s.target_porosity = periodic ? (dimension == 2 ? 0.18 : 0.40) : (dimension == 2 ? 0.19 : 0.42);
+  s.max_multiplier = 1.0 + 2e4 / s.grain.young;
+  s.final_max_multiplier = 1.0 + 2e3 / s.grain.young;
+  s.confining_stresses = {1e5};
+  s.servo_gain = periodic ? 0.1 : 0.5;
+  s.vtk = false;
+  s.plots = false;
+  return s;
+}
+
+nlohmann::json run(const TriaxialSettings& s, const std::string& tag, Csv* history = nullptr) {
+  RunOptions opt;
+  opt.quiet = true;
+  opt.out_dir = unique_temp_dir(tag);
+  const auto summary = run_triaxial(s, opt);
+  if (history) *history = read_csv(opt.out_dir + "/history.csv");
+  return summary["results"];
+}
+
+TEST(ElementTests, IsotropicAndOedometricStepsEndOnTheirStresses) {
+  struct Case {
+    LabKind kind;
+    int dimension;
+    bool periodic;
+  };
+  for (const Case c : {Case{LabKind::kIsotropic, 2, true}, Case{LabKind::kIsotropic, 2, false},
+                       Case{LabKind::kOedometer, 2, true}, Case{LabKind::kOedometer, 2, false},
+                       Case{LabKind::kOedometer, 3, true}}) {
+    TriaxialSettings s = small_sample(c.kind, c.dimension, c.periodic);
+    s.element.stresses = {2e5, 4e5, 2e5};
+    const std::string tag = cat(lab_kind_name(c.kind), c.dimension, c.periodic ? "p" : "w");
+    Csv h;
+    const auto r = run(s, tag, &h);
+    ASSERT_EQ(r["points"].size(), 4u) << tag;
+    double worst = 0.0;
+    for (std::size_t i = 1; i < 4; ++i) {
+      const auto& p = r["points"][i];
+      const double target = s.element.stresses[i - 1];
+      worst = std::max(worst, std::abs(p["sigma_axial"].get<double>() / target - 1.0));
+      if (c.kind == LabKind::kIsotropic)
+        worst = std::max(worst, std::abs(p["sigma_lateral"].get<double>() / target - 1.0));
+    }
+    report(tag + ": largest stress error at rest", worst);
+    EXPECT_LT(worst, 0.01) << tag;
+    // Loading compresses, unloading swells back part of it.
+    const double e0 = r["points"][0]["void_ratio"], e1 = r["points"][2]["void_ratio"],
+                 e2 = r["points"][3]["void_ratio"];
+    EXPECT_LT(e1, e0) << tag;
+    EXPECT_GT(e2, e1) << tag;
+    if (c.kind == LabKind::kOedometer) {
+      double lateral = 0.0;
+      for (const auto& row : h.rows)
+        lateral = std::max(lateral,
+                           std::abs(row[h.col("axial_strain")] - row[h.col("volumetric_strain")]));
+      report(tag + ": largest |axial - volumetric strain|", lateral);
+      EXPECT_LT(lateral, 1e-12) << tag;
+      EXPECT_LT(r["K0_at_largest_stress"].get<double>(), 1.0) << tag;
+      EXPECT_GT(r["K0_end"].get<double>(), r["K0_at_largest_stress"].get<double>()) << tag;
+    }
+  }
+}
+
+TEST(ElementTests, SimpleShearAtConstantVolumeAndAtConstantNormalStress) {
+  for (bool constant_volume : {true, false}) {
+    TriaxialSettings s = small_sample(LabKind::kSimpleShear, 2, true);
+    s.element.constant_volume = constant_volume;
+    s.element.max_shear_strain = 0.05;
+    s.element.shear_rate = 0.05;
+    s.history_points = 100;
+    const std::string tag =
+        constant_volume ? "simple shear, constant volume" : "simple shear, constant normal stress";
+    Csv h;
+    const auto r = run(s, constant_volume ? "ss_cv" : "ss_cs", &h);
+    const double t0 = h.rows.front()[h.col("time")] -
+                      h.rows.front()[h.col("shear_strain")] / s.element.shear_rate;
+    double volume = 0.0, rate = 0.0, normal = 0.0, lateral = 0.0;
+    for (const auto& row : h.rows) {
+      const double g = row[h.col("shear_strain")];
+      rate = std::max(rate, std::abs(g - s.element.shear_rate * (row[h.col("time")] - t0)));
+      volume = std::max(volume, std::abs(row[h.col("volumetric_strain")]));
+      lateral = std::max(lateral,
+                         std::abs(row[h.col("volumetric_strain")] - row[h.col("normal_strain")]));
+      if (g > 0.005) normal = std::max(normal, std::abs(row[h.col("normal_stress")] / 1e5 - 1.0));
+    }
+    EXPECT_LT(lateral, 1e-12);  // the lateral axis is fixed: all volume change is normal
+    if (constant_volume) {
+      // dh_xn = L_xn h_nn dt with h_nn fixed: the tilt is L_xn t (a dilating cell's is not).
+      report(tag + ": |shear strain - rate t|", rate);
+      EXPECT_LT(rate, 1e-9);
+      report(tag + ": largest |volumetric strain|", volume);
+      EXPECT_LT(volume, 1e-12);
+    } else {
+      report(tag + ": largest normal stress error", normal);
+      EXPECT_LT(normal, 0.01);
+    }
+    EXPECT_GT(r["tau_peak"].get<double>(), 0.0);
+    EXPECT_GT(r["phi_mobilised_peak_deg"].get<double>(), 5.0);
+  }
+}
+
+TEST(ElementTests, CyclicModulusFallsAndDampingRisesWithTheAmplitude) {
+  TriaxialSettings s = small_sample(LabKind::kCyclicTriaxial, 2, true);
+  s.element.amplitudes = {1e-5, 1e-4, 1e-3, 1e-2};
+  s.element.cycles = 2;
+  const auto r = run(s, "cyclic");
+  const auto& a = r["amplitudes"];
+  ASSERT_EQ(a.size(), 4u);
+  std::vector<double> g, d;
+  for (const auto& x : a) g.push_back(x["G_over_Gmax"]), d.push_back(x["damping_ratio"]);
+  for (std::size_t i = 0; i < 4; ++i)
+    report(cat("cyclic: amplitude ", s.element.amplitudes[i], " G/Gmax"), g[i]),
+        report(cat("cyclic: amplitude ", s.element.amplitudes[i], " damping"), d[i]);
+  EXPECT_NEAR(g[1], 1.0, 0.02);  // still elastic at 1e-4
+  EXPECT_LT(g[2], 0.95);
+  EXPECT_LT(g[3], g[2]);
+  EXPECT_LT(std::abs(d[0]), 0.01);
+  EXPECT_GT(d[2], d[1]);
+  EXPECT_GT(d[3], d[2]);
+}
+
+}  // namespace
+}  // namespace geodem::test
