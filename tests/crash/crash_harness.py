@@ -46,6 +46,15 @@ PULLOUT = (SMALL_PULLOUT.format(shape="L", trench="trench_depth = 0.05")
            .replace("[pull]", "[surcharge]\npressure = 2000.0\n[pull]")
            .replace("max_displacement = 0.03", "max_displacement = 0.01")
            + "[output]\nplots = false\n")
+# The element tests on the same sample: the oedometer's steps between walls, and cycles in the
+# periodic cell (every turning point and loop of the program's state crosses a checkpoint).
+LAB_SAMPLE = TRIAXIAL.split("[shear]")[0]
+OEDOMETER = (LAB_SAMPLE.replace('kind = "triaxial"', 'kind = "oedometer"')
+             + "[loading]\nstresses = [2e5, 1e5]\n[output]\nplots = false\n")
+CYCLIC = (LAB_SAMPLE.replace('kind = "triaxial"', 'kind = "cyclic_triaxial"')
+          .replace("count = 150", 'count = 150\nboundary = "periodic"')
+          + "[loading]\namplitudes = [1e-4, 1e-3]\ncycles = 1\nsteps_per_cycle = 400\n"
+          "[output]\nplots = false\n")
 SHEAR = shear(base="soil").replace("vtk = false", "vtk = false\nplots = false")
 SERIES = ('kind = "series"\n' + BASE.replace("max_axial_strain = 0.04", "max_axial_strain = 0.02")
           + "[series]\ncounts = [60, 120]\nseeds = 2\ntolerance = 0.05\n")
@@ -59,6 +68,8 @@ CASES = {
     "triaxial": (TRIAXIAL, 2500, False),
     "triaxial_periodic": (TRIAXIAL.replace("count = 150", 'count = 150\nboundary = "periodic"'),
                           2500, False),
+    "oedometer": (OEDOMETER, 2500, False),
+    "cyclic_triaxial": (CYCLIC, 2500, False),
     "pullout": (PULLOUT, 3000, False),
     "interface_shear": (SHEAR, None, False),
     "series": (SERIES, 3000, True),
