@@ -860,6 +860,7 @@ def plot_element(out, summary, h):
     import geodem_plot_element as element
     plot = {"isotropic": element.plot_stress_steps, "oedometer": element.plot_stress_steps,
             "simple_shear": element.plot_simple_shear,
+            "direct_shear": element.plot_simple_shear,
             "cyclic_triaxial": element.plot_cyclic}[summary["kind"]]
     return plot(out, summary, h, save)
 
@@ -867,7 +868,7 @@ def plot_element(out, summary, h):
 PLOTTERS = {"scene": plot_scene, "triaxial": plot_triaxial, "pullout": plot_pullout,
             "interface_shear": plot_interface,
             "isotropic": plot_element, "oedometer": plot_element, "simple_shear": plot_element,
-            "cyclic_triaxial": plot_element,
+            "cyclic_triaxial": plot_element, "direct_shear": plot_element,
             "series": plot_series, "rate_study": plot_rate_study, "calibrate": plot_calibrate}
 
 

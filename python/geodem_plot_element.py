@@ -5,6 +5,7 @@
   rest); the oedometer also sigma_h against sigma_v with its K0 on loading.
 - simple_shear: shear stress and normal strain against shear strain, one curve per normal
   stress; the stress path tau - sigma_n; the shear envelope of the peaks.
+- direct_shear: the same against the upper frame's displacement, with the plate's rise.
 - cyclic_triaxial: the measured loop of each amplitude (q against axial strain), and the
   modulus reduction G/Gmax and damping ratio against the shear strain amplitude.
 """
@@ -63,11 +64,14 @@ def plot_simple_shear(out, summary, h, save):
     made = []
     results = summary["results"]
     tests = results.get("tests", [])
+    box = summary["kind"] == "direct_shear"
     test = np.asarray(h["test"])
-    gamma = 100 * np.asarray(h["shear_strain"])
+    gamma = (1e3 * np.asarray(h["displacement"]) if box
+             else 100 * np.asarray(h["shear_strain"]))
     tau = np.asarray(h["shear_stress"]) / 1e3
     sn = np.asarray(h["normal_stress"]) / 1e3
-    en = 100 * np.asarray(h["normal_strain"])
+    en = (1e3 * np.asarray(h["vertical_displacement"]) if box
+          else 100 * np.asarray(h["normal_strain"]))
     fig, (ax, bx) = plt.subplots(2, 1, figsize=(6.4, 7.0), sharex=True)
     fig_p, px = plt.subplots(figsize=(6.0, 4.6))
     for k in sorted(set(int(t) for t in test)):
@@ -79,15 +83,22 @@ def plot_simple_shear(out, summary, h, save):
         px.plot(sn[m], tau[m], label=label)
     control = results.get("control", tests[0].get("control", "") if tests else "")
     ax.set_ylabel("shear stress tau (kPa)")
-    ax.set_title("Simple shear" + (", constant volume" if control == "constant_volume"
-                                   else ", constant normal stress"))
+    if box:
+        ax.set_title("Direct shear box")
+    else:
+        ax.set_title("Simple shear" + (", constant volume" if control == "constant_volume"
+                                       else ", constant normal stress"))
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
-    bx.set_xlabel("shear strain gamma (%)")
-    bx.set_ylabel("normal strain (%, + contraction)")
-    bx.invert_yaxis()
+    if box:
+        bx.set_xlabel("displacement of the upper frame (mm)")
+        bx.set_ylabel("rise of the plate (mm, + dilation)")
+    else:
+        bx.set_xlabel("shear strain gamma (%)")
+        bx.set_ylabel("normal strain (%, + contraction)")
+        bx.invert_yaxis()
     bx.grid(alpha=0.3)
-    save(fig, out, "simple_shear.png", made)
+    save(fig, out, "direct_shear.png" if box else "simple_shear.png", made)
     env = results.get("shear_envelope")
     if env:
         x = np.array([0.0, sn.max()])
@@ -100,7 +111,7 @@ def plot_simple_shear(out, summary, h, save):
     px.set_ylim(bottom=0)
     px.grid(alpha=0.3)
     px.legend(fontsize=8)
-    px.set_title("Stress path on the shear plane")
+    px.set_title("Stress path on the " + ("split plane" if box else "shear plane"))
     save(fig_p, out, "stress_path.png", made)
     return made
 

@@ -122,6 +122,9 @@ ScenarioKind oedometer_kind() {
 ScenarioKind simple_shear_kind() {
   return {"simple_shear", as_triaxial, true, single_run, check_triaxial, run_triaxial_kind};
 }
+ScenarioKind direct_shear_kind() {
+  return {"direct_shear", as_triaxial, true, single_run, check_triaxial, run_triaxial_kind};
+}
 ScenarioKind cyclic_triaxial_kind() {
   return {"cyclic_triaxial", as_triaxial, true, single_run, check_triaxial, run_triaxial_kind};
 }

@@ -69,6 +69,7 @@ ScenarioKind isotropic_kind();
 ScenarioKind oedometer_kind();
 ScenarioKind simple_shear_kind();
 ScenarioKind cyclic_triaxial_kind();
+ScenarioKind direct_shear_kind();
 ScenarioKind pullout_kind();
 ScenarioKind interface_shear_kind();
 ScenarioKind series_kind();

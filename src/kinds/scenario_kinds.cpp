@@ -9,9 +9,9 @@ namespace geodem {
 
 const std::vector<ScenarioKind>& scenario_kinds() {
   static const std::vector<ScenarioKind> kinds = {
-      scene_kind(),        triaxial_kind(),        isotropic_kind(), oedometer_kind(),
-      simple_shear_kind(), cyclic_triaxial_kind(), pullout_kind(),   interface_shear_kind(),
-      series_kind(),       rate_study_kind(),      calibrate_kind()};
+      scene_kind(),           triaxial_kind(),        isotropic_kind(),    oedometer_kind(),
+      simple_shear_kind(),    cyclic_triaxial_kind(), direct_shear_kind(), pullout_kind(),
+      interface_shear_kind(), series_kind(),          rate_study_kind(),   calibrate_kind()};
   return kinds;
 }
 

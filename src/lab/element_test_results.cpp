@@ -114,7 +114,9 @@ nlohmann::json simple_shear_results(const ShearCurve& c) {
   r["normal_stress_at_peak"] = c.normal_stress[ip];
   r["stress_ratio_peak"] = ratio[ir];
   r["phi_plane_peak_deg"] = std::atan(ratio[ir]) * kDeg;
-  r["phi_plane_residual_deg"] = std::atan(mean_of_last_fifth(c.shear_strain, ratio)) * kDeg;
+  const double residual = mean_of_last_fifth(c.shear_strain, ratio);
+  r["stress_ratio_residual"] = residual;
+  r["phi_plane_residual_deg"] = std::atan(residual) * kDeg;
   r["phi_mobilised_peak_deg"] =
       *std::max_element(c.phi_mobilised_deg.begin(), c.phi_mobilised_deg.end());
   r["phi_mobilised_residual_deg"] = mean_of_last_fifth(c.shear_strain, c.phi_mobilised_deg);
@@ -146,6 +148,24 @@ nlohmann::json simple_shear_results(const ShearCurve& c) {
   return r;
 }
 
+nlohmann::json direct_shear_results(const ShearCurve& c) {
+  nlohmann::json r = simple_shear_results(c);
+  if (r.is_null()) return r;
+  const auto rename = [&](const char* from, const char* to) {
+    r[to] = r[from];
+    r.erase(from);
+  };
+  rename("shear_strain_at_peak", "displacement_at_peak");
+  rename("shear_modulus_50", "shear_stiffness_50");
+  rename("phi_plane_peak_deg", "phi_peak_deg");
+  rename("phi_plane_residual_deg", "phi_residual_deg");
+  rename("normal_strain_end", "plate_rise_end");
+  r["plate_rise_end"] = -r["plate_rise_end"].get<double>();
+  r.erase("phi_mobilised_peak_deg");
+  r.erase("phi_mobilised_residual_deg");
+  return r;
+}
+
 ShearEnvelope fit_shear_envelope(const std::vector<double>& sigma_n,
                                  const std::vector<double>& tau) {
   ShearEnvelope e;
@@ -160,6 +180,20 @@ ShearEnvelope fit_shear_envelope(const std::vector<double>& sigma_n,
   e.phi_deg = std::atan(t) * kDeg;
   e.cohesion = mt - t * ms;
   return e;
+}
+
+nlohmann::json shear_envelopes(const nlohmann::json& tests) {
+  std::vector<double> sn, tau, sn_res, tau_res;
+  for (const auto& r : tests) {
+    sn.push_back(r["normal_stress_at_peak"]), tau.push_back(r["tau_peak"]);
+    const double s = r["normal_stress_initial"];
+    sn_res.push_back(s), tau_res.push_back(s * r["stress_ratio_residual"].get<double>());
+  }
+  const ShearEnvelope peak = fit_shear_envelope(sn, tau), res = fit_shear_envelope(sn_res, tau_res);
+  return {{"cohesion", peak.cohesion},
+          {"phi_deg", peak.phi_deg},
+          {"residual_cohesion", res.cohesion},
+          {"residual_phi_deg", res.phi_deg}};
 }
 
 CycleResult CycleMeter::result() const {

@@ -34,6 +34,11 @@ struct ShearCurve {
       void_ratio;
 };
 nlohmann::json simple_shear_results(const ShearCurve& c);
+// A direct shear curve in the same form: the frame's displacement (m) for the shear strain,
+// minus the plate's rise for the normal strain, atan(tau / sigma_n) for the friction.
+// Results as the simple shear's, with the displacement's names (displacement_at_peak,
+// shear_stiffness_50 in Pa/m, phi_peak_deg and phi_residual_deg of tau / sigma_n).
+nlohmann::json direct_shear_results(const ShearCurve& c);
 
 // tau = c + sigma_n tan(phi) by least squares over the tests' peaks.
 struct ShearEnvelope {
@@ -41,6 +46,11 @@ struct ShearEnvelope {
 };
 ShearEnvelope fit_shear_envelope(const std::vector<double>& sigma_n,
                                  const std::vector<double>& tau);
+
+// The peak envelope (tau_peak against the normal stress at the peak) and the residual one
+// (the residual stress ratio times the test's normal stress) of shear tests' results:
+// {"cohesion", "phi_deg", "residual_cohesion", "residual_phi_deg"}.
+nlohmann::json shear_envelopes(const nlohmann::json& tests);
 
 // One loop of a cyclic test in the shear stress tau = (sigma_a - sigma_r) / 2 and shear
 // strain gamma = eps_a - eps_r (the largest shear stress and strain of an axisymmetric, or

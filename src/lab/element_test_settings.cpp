@@ -17,6 +17,8 @@ const char* lab_kind_name(LabKind k) {
       return "simple_shear";
     case LabKind::kCyclicTriaxial:
       return "cyclic_triaxial";
+    case LabKind::kDirectShear:
+      return "direct_shear";
   }
   return "triaxial";
 }
@@ -52,14 +54,21 @@ void read_loading(TableReader& l, TriaxialSettings& s) {
           static_cast<std::uint64_t>(l.integer("stage_max_steps", 200'000, 1, (1LL << 50)));
       break;
     case LabKind::kSimpleShear:
+    case LabKind::kDirectShear:
       s.confining_stresses = l.numbers("normal_stress", {s.compaction_stress}, 1);
       for (double v : s.confining_stresses)
         if (!(v > 0.0)) l.fail("normal_stress", "normal stresses must be positive (Pa)");
+      s.history_points = static_cast<int>(l.integer("history_points", 300, 10, 1000000));
+      if (s.kind == LabKind::kDirectShear) {
+        const double length = s.box.front(), height = s.box.back();
+        e.shear_velocity = l.positive("shear_velocity", 0.02 * height);
+        e.max_displacement = l.in_range("max_displacement", 0.1 * length, 1e-9, 0.5 * length);
+        break;
+      }
       e.constant_volume = l.choice("control", "constant_stress",
                                    {"constant_stress", "constant_volume"}) == "constant_volume";
       e.shear_rate = l.in_range("shear_rate", 0.02, 1e-9, 100.0);
       e.max_shear_strain = l.in_range("max_shear_strain", 0.3, 1e-4, 2.0);
-      s.history_points = static_cast<int>(l.integer("history_points", 300, 10, 1000000));
       break;
     case LabKind::kCyclicTriaxial: {
       s.confining_stresses = {l.positive("confining_stress", s.compaction_stress)};

@@ -1,5 +1,6 @@
 // Settings of the element tests that share the triaxial kind's sample and preparation
-// (docs/lab_tests.md): kind = "isotropic", "oedometer", "simple_shear", "cyclic_triaxial".
+// (docs/element_tests.md): kind = "isotropic", "oedometer", "simple_shear",
+// "cyclic_triaxial", "direct_shear".
 // Their loading program is read from the [loading] table in place of [shear].
 #pragma once
 
@@ -12,11 +13,12 @@ namespace geodem {
 class TableReader;
 
 enum class LabKind : std::uint8_t {
-  kTriaxial,       // drained or undrained compression (lab/run_triaxial.cpp)
-  kIsotropic,      // isotropic loading and unloading by steps of mean stress
-  kOedometer,      // axial loading and unloading by steps, lateral strain zero
-  kSimpleShear,    // periodic cell sheared at constant normal stress or constant volume
-  kCyclicTriaxial  // strain-controlled cycles of axial strain at constant confining stress
+  kTriaxial,        // drained or undrained compression (lab/run_triaxial.cpp)
+  kIsotropic,       // isotropic loading and unloading by steps of mean stress
+  kOedometer,       // axial loading and unloading by steps, lateral strain zero
+  kSimpleShear,     // periodic cell sheared at constant normal stress or constant volume
+  kCyclicTriaxial,  // strain-controlled cycles of axial strain at constant confining stress
+  kDirectShear      // 2D shear box: upper frame slid at constant speed under a normal stress
 };
 
 const char* lab_kind_name(LabKind k);
@@ -34,6 +36,9 @@ struct ElementTestSettings {
   int cycles = 2;              // full cycles per amplitude; the last one is measured
   int steps_per_cycle = 2000;  // slower than strain_rate where a cycle would be shorter
   int points_per_cycle = 200;  // rows of history.csv per cycle
+  // direct_shear
+  double shear_velocity = 0.0;    // m/s of the upper frame (default 0.02 x the box height)
+  double max_displacement = 0.0;  // m (default 0.1 x the box length)
 };
 
 struct TriaxialSettings;

@@ -24,16 +24,17 @@ struct ElementTest {
   double last_strain = 0.0, last_gamma = 0.0;  // cyclic: axial and shear strain a step ago
   double next_record = 0.0;                    // strain (shear, or travelled) of the next row
   double porosity0 = 0.0;
-  StressSteps steps;               // isotropic, oedometer: the points at rest
-  ShearCurve curve;                // simple shear
-  CycleMeter loop;                 // cyclic: the loop under way
-  std::vector<CycleResult> loops;  // cyclic: every loop, amplitude after amplitude
+  double split = 0.0, plate0 = 0.0;  // direct shear: the split plane's and plate's heights
+  StressSteps steps;                 // isotropic, oedometer: the points at rest
+  ShearCurve curve;                  // simple shear
+  CycleMeter loop;                   // cyclic: the loop under way
+  std::vector<CycleResult> loops;    // cyclic: every loop, amplitude after amplitude
   std::string warning;
 
   template <class Archive>
   void visit(Archive& a) {
     a(ref), a(stage), a(turn), a(rate), a(path), a(last_strain), a(last_gamma), a(next_record),
-        a(porosity0);
+        a(porosity0), a(split), a(plate0);
     a(steps.target), a(steps.sigma_axial), a(steps.sigma_lateral), a(steps.axial_strain);
     a(steps.volumetric_strain), a(steps.void_ratio);
     a(curve.shear_strain), a(curve.shear_stress), a(curve.normal_stress), a(curve.normal_strain);
@@ -66,6 +67,10 @@ inline std::vector<std::string> element_test_columns(LabKind kind) {
               "void_ratio",
               "coordination",
               "unbalanced"};
+    case LabKind::kDirectShear:
+      return {"test",         "step",          "time",         "displacement",
+              "shear_stress", "normal_stress", "stress_ratio", "vertical_displacement",
+              "void_ratio",   "coordination",  "unbalanced"};
     case LabKind::kCyclicTriaxial:
       return {"amplitude",
               "cycle",

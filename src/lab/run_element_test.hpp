@@ -6,7 +6,9 @@
 //   last), the normal axis at the consolidation stress (or fixed: constant volume), the
 //   others fixed;
 // - cyclic_triaxial: the axial strain cycled between +A and -A around the consolidated
-//   state, the lateral axes at the confining stress, `cycles` loops per amplitude.
+//   state, the lateral axes at the confining stress, `cycles` loops per amplitude;
+// - direct_shear (2D): the box split at mid-height (lab/direct_shear_box.hpp), its upper
+//   frame slid at shear_velocity, the plate held at the normal stress.
 // The functions take the lab runner; its members: w, box, s, servos, element, total_steps,
 // history, progress, vtk, run_until, after_step, porosity, sigma3.
 #pragma once
@@ -24,6 +26,7 @@
 #include "controllers/cell_servo.hpp"
 #include "controllers/stress_servo.hpp"
 #include "io/step_loop.hpp"
+#include "lab/direct_shear_box.hpp"
 #include "lab/element_test_state.hpp"
 #include "measure/measurements.hpp"
 #include "walls/lab_box.hpp"
@@ -103,6 +106,16 @@ void install_element_drives(Lab& lab) {
       for (int k = 0; k < D - 1; ++k) d[k] = {true, lab.sigma3(), 0.0};
       d[D - 1].rate = (e.turn % 2 == 0 ? 1.0 : -1.0) * e.rate;
       break;
+    case LabKind::kDirectShear:
+      if constexpr (D == 2) {
+        // The lips reach a tenth of the box length past the largest displacement.
+        if (!shear_box_split(lab.w))
+          split_shear_box(lab.w, lab.box, e.split,
+                          p.max_displacement + 0.1 * lab.box.size(lab.w).x());
+        drive_upper_frame(lab.w, shear_frames(lab.box), p.shear_velocity);
+        lab.w.controllers = {lab.servos[0]};
+      }
+      return;
     case LabKind::kTriaxial:
       break;
   }
@@ -156,6 +169,10 @@ void begin_element_test(Lab& lab) {
   e.ref = lab.box.size(lab.w);
   e.porosity0 = lab.porosity();
   if (lab.s.kind == LabKind::kCyclicTriaxial) begin_amplitude(lab);
+  if (lab.s.kind == LabKind::kDirectShear) {
+    e.plate0 = lab.w.walls[lab.box.hi[Lab::kDim - 1]].point[Lab::kDim - 1];
+    e.split = 0.5 * (lab.w.walls[lab.box.lo[Lab::kDim - 1]].point[Lab::kDim - 1] + e.plate0);
+  }
   if (lab.s.kind == LabKind::kIsotropic || lab.s.kind == LabKind::kOedometer)
     stress_step_row(lab, unbalanced_force_ratio(lab.w), true, lab.sigma3());
   install_element_drives(lab);
@@ -318,6 +335,76 @@ void run_cycles(Lab& lab) {
   }
 }
 
+// Direct shear: the upper frame's displacement is its left side's position.
+template <class Lab>
+double frame_displacement(const Lab& lab) {
+  return lab.w.walls[4].point[0];
+}
+
+// Grains whose centres lie outside both frames (the lips keep them in: 0).
+template <class Lab>
+std::size_t grains_outside_shear_box(const Lab& lab) {
+  const auto& P = lab.w.particles;
+  const double u = frame_displacement(lab), length = lab.box.size(lab.w).x();
+  const double top = lab.w.walls[lab.box.hi[1]].point.y(), split = lab.element.split;
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const double x = P.pos[i].x(), y = P.pos[i].y(), shift = y > split ? u : 0.0;
+    if (x < shift || x > length + shift || y < 0.0 || y > top) ++out;
+  }
+  return out;
+}
+
+template <class Lab>
+void direct_shear_row(Lab& lab) {
+  if constexpr (Lab::kDim == 2) {
+    auto& e = lab.element;
+    const double u = frame_displacement(lab), length = lab.box.size(lab.w).x();
+    // The stresses on the split plane's shrinking area (length - u); the plate's over its own.
+    const double tau = shear_box_force(lab.w, lab.box, shear_frames(lab.box)) / (length - u);
+    const double sn = lab.w.walls[lab.box.hi[1]].normal_stress();
+    const double rise = lab.w.walls[lab.box.hi[1]].point.y() - e.plate0;
+    const double void_r = void_ratio(lab);
+    lab.history.row({static_cast<double>(lab.test), static_cast<double>(lab.w.step), lab.w.time, u,
+                     tau, sn, tau / sn, rise, void_r, coordination_number(lab.w),
+                     unbalanced_force_ratio(lab.w)});
+    auto& c = e.curve;
+    c.shear_strain.push_back(u), c.shear_stress.push_back(tau), c.normal_stress.push_back(sn);
+    c.normal_strain.push_back(-rise), c.void_ratio.push_back(void_r);
+    c.phi_mobilised_deg.push_back(std::atan(tau / sn) * 180.0 / std::numbers::pi);
+    const double max = lab.s.element.max_displacement;
+    lab.progress.update(cat("direct shear ", lab.test + 1, "/", lab.s.confining_stresses.size()),
+                        lab.w.step, lab.w.time, u / max, "tau/sigma_n " + format_sig(tau / sn),
+                        (static_cast<double>(lab.test) + u / max) /
+                            static_cast<double>(lab.s.confining_stresses.size()));
+  }
+}
+
+template <class Lab>
+void run_direct_shear(Lab& lab) {
+  if constexpr (Lab::kDim == 2) {
+    auto& e = lab.element;
+    const double max = lab.s.element.max_displacement, v = lab.s.element.shear_velocity;
+    const double every = max / lab.s.history_points;
+    step_loop(
+        lab.w, lab.total_steps, [&] { return frame_displacement(lab) < max; },
+        [&] {
+          const double next = frame_displacement(lab) + 2.0 * v * lab.w.dt;
+          return next >= e.next_record || next >= max;
+        },
+        [&] {
+          const double u = frame_displacement(lab);
+          if (lab.w.measure_this_step && (u >= e.next_record || u >= max)) {
+            while (e.next_record <= u) e.next_record += every;
+            direct_shear_row(lab);
+          }
+          return false;
+        },
+        [&] { return lab.after_step(); });
+    drive_upper_frame(lab.w, shear_frames(lab.box), 0.0);
+  }
+}
+
 template <class Lab>
 void run_element_test(Lab& lab) {
   switch (lab.s.kind) {
@@ -330,6 +417,9 @@ void run_element_test(Lab& lab) {
       break;
     case LabKind::kCyclicTriaxial:
       run_cycles(lab);
+      break;
+    case LabKind::kDirectShear:
+      run_direct_shear(lab);
       break;
     case LabKind::kTriaxial:
       break;
@@ -353,6 +443,10 @@ nlohmann::json element_test_results(const Lab& lab) {
     case LabKind::kCyclicTriaxial:
       r = cyclic_results(lab.s.element.amplitudes, lab.s.element.cycles, e.loops);
       r["confining_stress"] = lab.sigma3();
+      break;
+    case LabKind::kDirectShear:
+      r = direct_shear_results(e.curve);
+      if constexpr (Lab::kDim == 2) r["grains_outside_box"] = grains_outside_shear_box(lab);
       break;
     case LabKind::kTriaxial:
       break;

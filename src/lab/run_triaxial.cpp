@@ -13,6 +13,7 @@
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
 #include "io/step_loop.hpp"
+#include "lab/lab_controllers.hpp"
 #include "lab/lab_phases.hpp"
 #include "lab/run_element_test.hpp"
 #include "lab/soil_parameters.hpp"
@@ -167,14 +168,7 @@ struct Lab {
                                 : phase == Phase::kCompression ? TriaxialStage::kCompression
                                 : phase == Phase::kDone        ? TriaxialStage::kDone
                                                                : TriaxialStage::kConsolidation;
-    if (s.kind == LabKind::kTriaxial || stage != TriaxialStage::kCompression) {
-      install_triaxial_controllers(w, box, s, stage, sigma3(), new_servos, servos);
-      return;
-    }
-    // An element test's program: the consolidation's servos, driven by the program's step.
-    install_triaxial_controllers(w, box, s, TriaxialStage::kConsolidation, sigma3(), new_servos,
-                                 servos);
-    install_element_drives(*this);
+    install_lab_controllers(*this, stage, new_servos);
   }
 
   void start() {
@@ -292,10 +286,14 @@ struct Lab {
     install_controllers(true);
   }
 
-  bool consolidated(double unb) const {
-    for (int k = 0; k < D; ++k)
+  // Every axis at sigma3; in the shear box, the plate's axis (the sides are fixed).
+  bool stresses_on_target() const {
+    for (int k = s.kind == LabKind::kDirectShear ? kAxial : 0; k < D; ++k)
       if (std::abs(box.stress(w, k) - sigma3()) > s.stress_tolerance * sigma3()) return false;
-    return unb < s.unbalanced_tolerance;
+    return true;
+  }
+  bool consolidated(double unb) const {
+    return stresses_on_target() && unb < s.unbalanced_tolerance;
   }
 
   // A sample whose stresses are on target but whose unbalanced force stays just above
@@ -314,11 +312,7 @@ struct Lab {
       begin_compression();
       return;
     }
-    bool on_target = true;
-    for (int k = 0; k < D; ++k)
-      on_target =
-          on_target && std::abs(box.stress(w, k) - sigma3()) <= s.stress_tolerance * sigma3();
-    if (!on_target) {
+    if (!stresses_on_target()) {
       phase = Phase::kConsolidationMore;
       return;
     }
@@ -424,8 +418,8 @@ struct Lab {
       s3_peaks.push_back(tests.back()["sigma3_peak"].get<double>());
     } else {
       tests.push_back(element_test_results(*this));
-      tests.back()[s.kind == LabKind::kSimpleShear ? "normal_stress" : "confining_stress"] =
-          sigma3();
+      const bool shear_test = s.kind == LabKind::kSimpleShear || s.kind == LabKind::kDirectShear;
+      tests.back()[shear_test ? "normal_stress" : "confining_stress"] = sigma3();
     }
     if (++test < s.confining_stresses.size()) {
       begin_test();
@@ -471,13 +465,9 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
   results["tests"] = lab.tests;
   if (lab.tests.size() == 1)
     for (auto& [k, v] : lab.tests[0].items()) results[k] = v;  // the contract's flat keys
-  if (s.kind == LabKind::kSimpleShear && s.confining_stresses.size() > 1) {
-    std::vector<double> sn, tau;
-    for (const auto& r : lab.tests)
-      sn.push_back(r["normal_stress_at_peak"]), tau.push_back(r["tau_peak"]);
-    const ShearEnvelope e = fit_shear_envelope(sn, tau);
-    results["shear_envelope"] = {{"cohesion", e.cohesion}, {"phi_deg", e.phi_deg}};
-  } else if (s.kind == LabKind::kTriaxial && s.confining_stresses.size() > 1) {
+  if (s.kind == LabKind::kSimpleShear || s.kind == LabKind::kDirectShear)
+    results["shear_envelope"] = shear_envelopes(lab.tests);
+  else if (s.kind == LabKind::kTriaxial && s.confining_stresses.size() > 1) {
     const MohrCoulomb mc = fit_mohr_coulomb(lab.s1_peaks, lab.s3_peaks);
     results["mohr_coulomb"] = {{"cohesion", mc.cohesion}, {"phi_deg", mc.phi_deg}};
   }

@@ -42,11 +42,11 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
   TriaxialSettings s;
   s.file = file;
   TableReader r(root, "", file, &s.resolved);
-  const std::string kind =
-      r.choice("kind", "triaxial",
-               {"triaxial", "isotropic", "oedometer", "simple_shear", "cyclic_triaxial"});
+  const std::string kind = r.choice(
+      "kind", "triaxial",
+      {"triaxial", "isotropic", "oedometer", "simple_shear", "cyclic_triaxial", "direct_shear"});
   for (LabKind k : {LabKind::kTriaxial, LabKind::kIsotropic, LabKind::kOedometer,
-                    LabKind::kSimpleShear, LabKind::kCyclicTriaxial})
+                    LabKind::kSimpleShear, LabKind::kCyclicTriaxial, LabKind::kDirectShear})
     if (kind == lab_kind_name(k)) s.kind = k;
   s.dimension = static_cast<int>(r.integer("dimension", 3, 2, 3));
   s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, (1LL << 62)));
@@ -148,6 +148,10 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
     l->finish();
     if (s.kind == LabKind::kSimpleShear && !s.periodic)
       sample->fail("boundary", "simple_shear runs in a periodic cell: boundary = \"periodic\"");
+    if (s.kind == LabKind::kDirectShear && s.periodic)
+      sample->fail("boundary", "direct_shear runs in a box of walls: boundary = \"walls\"");
+    if (s.kind == LabKind::kDirectShear && s.dimension != 2)
+      r.fail("dimension", "direct_shear is a 2D test (its box has segment walls): dimension = 2");
   } else {
     read_shear(r, s);
   }

@@ -55,6 +55,10 @@ CYCLIC = (LAB_SAMPLE.replace('kind = "triaxial"', 'kind = "cyclic_triaxial"')
           .replace("count = 150", 'count = 150\nboundary = "periodic"')
           + "[loading]\namplitudes = [1e-4, 1e-3]\ncycles = 1\nsteps_per_cycle = 400\n"
           "[output]\nplots = false\n")
+DIRECT_SHEAR = (LAB_SAMPLE.replace('kind = "triaxial"', 'kind = "direct_shear"')
+                .replace("box = [0.4, 0.8]", "box = [0.8, 0.4]")
+                + "[loading]\nnormal_stress = [1e5]\nmax_displacement = 0.004\n"
+                "[output]\nplots = false\n")
 SHEAR = shear(base="soil").replace("vtk = false", "vtk = false\nplots = false")
 SERIES = ('kind = "series"\n' + BASE.replace("max_axial_strain = 0.04", "max_axial_strain = 0.02")
           + "[series]\ncounts = [60, 120]\nseeds = 2\ntolerance = 0.05\n")
@@ -70,6 +74,7 @@ CASES = {
                           2500, False),
     "oedometer": (OEDOMETER, 2500, False),
     "cyclic_triaxial": (CYCLIC, 2500, False),
+    "direct_shear": (DIRECT_SHEAR, 2500, False),
     "pullout": (PULLOUT, 3000, False),
     "interface_shear": (SHEAR, None, False),
     "series": (SERIES, 3000, True),

@@ -2,8 +2,10 @@
 // end at rest on their stresses within 1 %; the oedometer's lateral strain stays zero (the
 // axial strain equals the volumetric one to rounding) and K0 < 1 on loading; simple shear at
 // constant volume keeps the volume to rounding and its shear strain is the imposed rate times
-// the time (1e-9), the lateral strain staying zero; at constant normal stress the servo holds the normal stress within 1 %;
-// cyclic loading gives G / Gmax falling and the damping ratio rising with the amplitude.
+// the time (1e-9), the lateral strain staying zero; at constant normal stress the servo holds the
+// normal stress within 1 %; cyclic loading gives G / Gmax falling and the damping ratio rising with
+// the amplitude; the direct shear box's plate holds its normal stress within 1 %, no grain leaves
+// the frames, and the shear stress rises from zero.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -178,6 +180,34 @@ TEST(ElementTests, CyclicModulusFallsAndDampingRisesWithTheAmplitude) {
   EXPECT_LT(std::abs(d[0]), 0.01);
   EXPECT_GT(d[2], d[1]);
   EXPECT_GT(d[3], d[2]);
+}
+
+TEST(ElementTests, DirectShearBoxHoldsItsNormalStressAndItsGrains) {
+  TriaxialSettings s = small_sample(LabKind::kDirectShear, 2, false);
+  s.box = {1.0, 0.5};
+  s.count = 300;
+  s.confining_stresses = {5e4, 1e5};
+  s.strain_rate = 0.02;
+  s.element.shear_velocity = 0.01;
+  s.element.max_displacement = 0.03;
+  s.history_points = 60;
+  Csv h;
+  const auto r = run(s, "direct_shear", &h);
+  double normal = 0.0;
+  for (const auto& row : h.rows)
+    if (row[h.col("displacement")] > 0.005) {
+      const double target = s.confining_stresses[static_cast<std::size_t>(row[h.col("test")])];
+      normal = std::max(normal, std::abs(row[h.col("normal_stress")] / target - 1.0));
+    }
+  report("direct shear: largest plate stress error", normal);
+  EXPECT_LT(normal, 0.01);
+  ASSERT_EQ(r["tests"].size(), 2u);
+  for (const auto& t : r["tests"]) {
+    EXPECT_EQ(t["grains_outside_box"].get<int>(), 0);
+    EXPECT_GT(t["stress_ratio_peak"].get<double>(), 0.2);
+  }
+  EXPECT_LT(std::abs(h.rows.front()[h.col("stress_ratio")]), 0.2);  // from rest
+  EXPECT_TRUE(r["shear_envelope"].contains("phi_deg"));
 }
 
 }  // namespace
