@@ -54,6 +54,16 @@ if ((all)); then
   /usr/bin/python3 examples/triaxial3d/compare_boundaries.py "$OUT/triaxial3d_boundaries"
   cp "$OUT/triaxial3d_boundaries/boundaries.png" "$OUT/triaxial3d_boundaries/boundaries.md" \
     examples/triaxial3d/expected/
+  # The element tests of one soil over 5 seeds (about 4 minutes), seed 1's plots.
+  /usr/bin/python3 examples/lab2d/consistency.py "$OUT/lab2d" --seeds 5
+  cp "$OUT/lab2d"/consistency.{md,json} "$OUT/lab2d"/{modulus_damping,compression}.png \
+    examples/lab2d/expected/
+  for k in oedometer direct_shear simple_shear cyclic; do
+    /usr/bin/python3 python/geodem_plot.py "$OUT/lab2d/${k}_seed1" > /dev/null
+  done
+  cp "$OUT/lab2d/oedometer_seed1/k0.png" "$OUT/lab2d/direct_shear_seed1/direct_shear.png" \
+    "$OUT/lab2d/simple_shear_seed1/simple_shear.png" "$OUT/lab2d/cyclic_seed1/loops.png" \
+    examples/lab2d/expected/
   /usr/bin/python3 examples/biaxial2d/critical_state.py "$OUT/biaxial2d_critical_state" --strain 0.2 \
     --count 1000
   cp "$OUT/biaxial2d_critical_state/critical_state.png" \

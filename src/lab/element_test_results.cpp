@@ -126,8 +126,11 @@ nlohmann::json simple_shear_results(const ShearCurve& c) {
   std::size_t a = ir, b = ir;
   while (a > 0 && c.shear_strain[a - 1] >= c.shear_strain[ir] - half) --a;
   while (b + 1 < n && c.shear_strain[b + 1] <= c.shear_strain[ir] + half) ++b;
-  r["dilatancy_deg"] =
-      number_or_null(-std::atan(slope(c.shear_strain, c.normal_strain, a, b)) * kDeg);
+  const double tan_psi = -slope(c.shear_strain, c.normal_strain, a, b);
+  r["dilatancy_deg"] = number_or_null(std::atan(tan_psi) * kDeg);
+  // Taylor's energy correction: the part of the peak stress ratio that lifts the normal load,
+  // tan(psi), taken off: the friction of the shearing alone.
+  r["phi_peak_dilatancy_corrected_deg"] = number_or_null(std::atan(ratio[ir] - tan_psi) * kDeg);
   // G50: secant to half the peak shear stress (interpolated).
   double g50 = std::nan("");
   for (std::size_t i = 1; i <= ip; ++i)

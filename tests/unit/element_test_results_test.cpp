@@ -105,6 +105,8 @@ TEST(ElementTestResults, SimpleShearCurveGivesPeakResidualDilatancyAndG50) {
   EXPECT_NEAR(r["phi_plane_residual_deg"].get<double>(), std::atan(0.4) * 180.0 / kPi, 1e-9);
   EXPECT_NEAR(r["shear_strain_at_peak"].get<double>(), 0.1, 1e-12);
   EXPECT_NEAR(r["dilatancy_deg"].get<double>(), std::atan(0.2) * 180.0 / kPi, 1e-9);
+  EXPECT_NEAR(r["phi_peak_dilatancy_corrected_deg"].get<double>(),
+              std::atan(0.5 - 0.2) * 180.0 / kPi, 1e-9);
   EXPECT_NEAR(r["shear_modulus_50"].get<double>(), 5.0 * sn, 1e-6 * sn);  // tau / gamma
 }
 
