@@ -69,10 +69,11 @@ int run_main(int argc, char** argv) {
   run->add_flag("--overwrite", overwrite,
                 "replace the earlier run in --out (its files are deleted first); without it a "
                 "folder that holds files is refused");
-  run->add_option("--resume", resume_dir,
-                  "continue the run whose output folder is DIR from its newest valid checkpoint "
-                  "(scene, triaxial, pullout; outputs stay in DIR); a study: rerun its "
-                  "unfinished runs, keeping the finished ones");
+  run->add_option(
+      "--resume", resume_dir,
+      "continue the run whose output folder is DIR from its newest valid checkpoint "
+      "(scene, triaxial and the element tests, pullout; outputs stay in DIR); a study: rerun its "
+      "unfinished runs, keeping the finished ones");
 
   auto* check = app.add_subcommand("check", "validate a scenario without running it");
   check->add_option("scenario", scenario, "scenario file (TOML)")->required();

@@ -2,7 +2,7 @@
 """Drained and undrained biaxial tests of the example's dense disc sample in a periodic
 cell, at its three confining stresses, seeds 1 to N (two runs at a time), sheared to a large
 strain: the critical state line q = M p' from the drained tests' ends, and where the undrained
-(constant-volume) stress paths end against it.
+(constant-volume) stress paths end against it; the same line in the e - log p' plane.
 
     examples/biaxial2d/critical_state.py OUT [--seeds 3] [--strain 0.25] [--count 2000]
                                          [--geodem build/geodem] [--reuse]
@@ -13,6 +13,7 @@ OUT/critical_state.png (copied to expected/ by scripts/refresh-examples.sh --all
 import argparse
 import csv
 import json
+import math
 import statistics
 import subprocess
 from concurrent.futures import ThreadPoolExecutor
@@ -83,6 +84,29 @@ def main():
             f"{u['p'][0] / 1e3:.0f} +- {u['p'][1] / 1e3:.0f} | {u['q'][0] / 1e3:.0f} +- "
             f"{u['q'][1] / 1e3:.0f} | {u['M'][0]:.3f} +- {u['M'][1]:.3f} | "
             f"{(u['M'][0] - M) / M_std:+.1f} | {u['u_end'][0] / 1e3:.0f} +- {u['u_end'][1] / 1e3:.0f} |")
+    # The critical state line in the void ratio - log p' plane: e = Gamma - lambda log10(p' / 1 kPa)
+    # by least squares over the drained tests' ends (their last row), and the undrained ends'
+    # distance from it in standard deviations of the drained points about the line.
+    ends_e = {"drained": [], "undrained": []}
+    for (drainage, seed), (tests, rows) in zip(jobs, done):
+        for t in range(len(tests)):
+            last = [r for r in rows if int(float(r["test"])) == t][-1]
+            n = float(last["porosity"])
+            ends_e[drainage].append((math.log10(float(last["p"]) / 1e3), n / (1.0 - n)))
+    xs, es = zip(*ends_e["drained"])
+    mx, me = statistics.mean(xs), statistics.mean(es)
+    lam = -sum((x - mx) * (e - me) for x, e in zip(xs, es)) / sum((x - mx) ** 2 for x in xs)
+    gamma = me + lam * mx
+    spread = statistics.stdev([e - (gamma - lam * x) for x, e in zip(xs, es)])
+    off = [(e - (gamma - lam * x)) / spread for x, e in ends_e["undrained"]]
+    table["csl_e_log_p"] = {"Gamma": gamma, "lambda10": lam, "residual_std": spread,
+                            "undrained_offsets_in_std": off}
+    lines += ["", f"Critical state line in e - log p' (drained ends): e = {gamma:.4f} - "
+              f"{lam:.4f} log10(p' / 1 kPa), scatter of the drained ends about it {spread:.4f}; "
+              f"undrained ends (e = {statistics.mean(e for _, e in ends_e['undrained']):.4f}, "
+              f"p' = {statistics.mean(10 ** x for x, _ in ends_e['undrained']):.0f} kPa on "
+              f"average) lie {statistics.mean(off):+.1f} +- {statistics.stdev(off):.1f} such "
+              "standard deviations from it (the line extrapolated from the drained range)."]
     (out / "critical_state.md").write_text("\n".join(lines) + "\n")
     (out / "critical_state.json").write_text(json.dumps(table, indent=1))
     print("\n".join(lines))
@@ -90,7 +114,7 @@ def main():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5))
     colours = {5e4: "tab:blue", 1e5: "tab:green", 2e5: "tab:red"}
     pmax = 0.0
     for (drainage, seed), (tests, rows) in zip(jobs, done):
@@ -109,6 +133,17 @@ def main():
     ax.legend(fontsize=7)
     ax.set_title(f"{a.count} discs, periodic cell, seeds 1-{a.seeds}: drained (dashed), "
                  "undrained (solid)")
+    for drainage, marker in (("drained", "o"), ("undrained", "s")):
+        bx.semilogx([10 ** x for x, _ in ends_e[drainage]], [e for _, e in ends_e[drainage]],
+                    marker, label=f"{drainage} ends")
+    px = [10 ** min(xs) * 0.8, 10 ** max(x for x, _ in ends_e["undrained"]) * 1.2]
+    bx.semilogx(px, [gamma - lam * math.log10(p) for p in px], "k", lw=1.2,
+                label=f"e = {gamma:.3f} - {lam:.4f} log10 p'")
+    bx.set_xlabel("p' (kPa)")
+    bx.set_ylabel("void ratio e")
+    bx.grid(alpha=0.3, which="both")
+    bx.legend(fontsize=7)
+    bx.set_title("Critical state line, e - log p'")
     fig.tight_layout()
     fig.savefig(out / "critical_state.png", dpi=110)
 

@@ -51,6 +51,22 @@ def test_triaxial_from_python_writes_the_cli_history(tmp_path):
     assert summary["results"] == json.loads((cli / "summary.json").read_text())["results"]
 
 
+def test_oedometer_from_a_dict_gives_the_cli_results(tmp_path):
+    """An element test given as a dict: the same run as its TOML file on the command line."""
+    sample = LAB_CHECKPOINT_TRIAXIAL.split("[shear]")[0].replace('kind = "triaxial"',
+                                                                  'kind = "oedometer"')
+    text = sample + "[loading]\nstresses = [2e5, 1e5]\n[output]\nplots = false\nvtk = false\n"
+    cli = tmp_path / "cli"
+    run_cli(text, cli, tmp_path)
+    import tomllib
+    summary = geodem.run(tomllib.loads(text), out=str(tmp_path / "py"))
+    assert summary["kind"] == "oedometer"
+    assert (cli / "history.csv").read_bytes() == (tmp_path / "py" / "history.csv").read_bytes()
+    r = summary["results"]
+    assert r == json.loads((cli / "summary.json").read_text())["results"]
+    assert len(r["points"]) == 3 and 0.0 < r["K0_at_largest_stress"] < 1.0
+
+
 def toml_text(d, prefix=""):
     """A small TOML writer for the test's dicts (tables, arrays of tables, values)."""
     def value(v):
