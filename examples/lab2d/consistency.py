@@ -4,7 +4,15 @@ from the biaxial (periodic cell), simple-shear and direct-shear tests side by si
 the oedometer beside Jaky's 1 - sin(phi), compression indices, and the modulus reduction and
 damping curves of the cyclic test.
 
-    examples/lab2d/consistency.py OUT [--seeds 5] [--geodem build/geodem] [--reuse]
+    examples/lab2d/consistency.py OUT [--seeds 5] [--soil discs|sand_2d]
+                                      [--geodem build/geodem] [--reuse]
+
+--soil discs (the default) runs the scenarios of this folder as they are; --soil sand_2d runs
+them on the shipped sand preset instead (two-disc clumps with rolling resistance, calibrated
+for the pull-out examples: presets/sand_2d.toml) at its stresses, a fifth of the discs' (10,
+20, 40 kPa; 20 kPa of compaction and cyclic confinement; oedometer and isotropic steps 40 kPa
+to 320 kPa and back to 20 kPa), prepared to the preset's porosity. The scenarios run are
+written to OUT/scenarios/.
 
 Writes OUT/consistency.md (the tables of the README), OUT/consistency.json and the figures
 OUT/modulus_damping.png and OUT/compression.png (copied to expected/ by
@@ -13,6 +21,7 @@ scripts/refresh-examples.sh --all).
 import argparse
 import json
 import math
+import re
 import statistics
 import subprocess
 from concurrent.futures import ThreadPoolExecutor
@@ -27,9 +36,33 @@ HERE = Path(__file__).resolve().parent
 KINDS = ["biaxial", "simple_shear", "direct_shear", "oedometer", "isotropic", "cyclic"]
 
 
-def run(geodem, scenario, out, seed, reuse):
+def scenario_text(kind, soil):
+    """The scenario of `kind` for the soil: this folder's file, or the same test on a preset
+    at a fifth of the stresses."""
+    text = (HERE / f"{kind}.toml").read_text()
+    if soil == "discs":
+        return text
+    head, rest = text.split("[material]\n", 1)
+    rest = rest.split("\n\n", 1)[1]  # the disc material's keys, up to the blank line
+    text = head + f'[material]\npreset = "{soil}"\n\n' + rest
+    # The preset's grain shape, size spread and porosity.
+    text = re.sub(r"target_porosity = .*\n", "", text)
+    text = re.sub(r"radius_fuzz = .*\n", "", text)
+    text = f"# {kind}.toml of examples/lab2d on the preset {soil}, at a fifth of the stresses\n" + text
+
+    def scaled(m):
+        return m.group(1) + re.sub(r"[0-9.]+e[0-9]+", lambda v: f"{float(v.group(0)) / 5:g}",
+                                   m.group(2))
+    return re.sub(r"^((?:confining_stress|normal_stress|stresses) = )(.*)$", scaled, text,
+                  flags=re.M)
+
+
+def run(geodem, scenario, out, seed, reuse, soil):
+    path = out.parent / "scenarios" / f"{scenario}.toml"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(scenario_text(scenario, soil))
     if not reuse or not (out / "summary.json").exists():
-        subprocess.run([geodem, "run", str(HERE / f"{scenario}.toml"), "--out", str(out),
+        subprocess.run([geodem, "run", str(path), "--out", str(out),
                         "--overwrite", "--quiet", "--threads", "1", "--set", f"seed={seed}",
                         "--set", "output.plots=false"], check=True)
     return json.loads((out / "summary.json").read_text())
@@ -49,6 +82,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("out")
     ap.add_argument("--seeds", type=int, default=5)
+    ap.add_argument("--soil", default="discs", help="discs, or a preset name (sand_2d)")
     ap.add_argument("--geodem", default="build/geodem")
     ap.add_argument("--reuse", action="store_true", help="read the runs already in OUT")
     a = ap.parse_args()
@@ -57,7 +91,7 @@ def main():
     jobs = [(k, s) for k in KINDS for s in seeds]
     with ThreadPoolExecutor(2) as pool:
         done = list(pool.map(lambda j: run(a.geodem, j[0], out / f"{j[0]}_seed{j[1]}", j[1],
-                                           a.reuse), jobs))
+                                           a.reuse, a.soil), jobs))
     res = {k: [] for k in KINDS}
     wall = {k: [] for k in KINDS}
     for (k, _), summary in zip(jobs, done):
