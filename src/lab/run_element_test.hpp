@@ -213,6 +213,30 @@ void run_stress_steps(Lab& lab) {
   }
 }
 
+// Shears until `measure()` (the shear strain or displacement, growing at about `rate` per
+// second) reaches `max`, with a row (`row()`) every max / history_points of it, written on a
+// measuring step.
+template <class Lab, class Measure, class Row>
+void shear_to(Lab& lab, Measure&& measure, double max, double rate, Row&& row) {
+  auto& e = lab.element;
+  const double every = max / lab.s.history_points;
+  step_loop(
+      lab.w, lab.total_steps, [&] { return measure() < max; },
+      [&] {
+        const double next = measure() + 2.0 * rate * lab.w.dt;
+        return next >= e.next_record || next >= max;
+      },
+      [&] {
+        const double g = measure();
+        if (lab.w.measure_this_step && (g >= e.next_record || g >= max)) {
+          while (e.next_record <= g) e.next_record += every;
+          row();
+        }
+        return false;
+      },
+      [&] { return lab.after_step(); });
+}
+
 // Simple shear: the shear strain is the cell's tilt, h_xn / h_nn.
 template <class Lab>
 double cell_shear_strain(const Lab& lab) {
@@ -250,24 +274,10 @@ void simple_shear_row(Lab& lab) {
 
 template <class Lab>
 void run_simple_shear(Lab& lab) {
-  auto& e = lab.element;
-  const double max = lab.s.element.max_shear_strain, rate = lab.s.element.shear_rate;
-  const double every = max / lab.s.history_points;
-  step_loop(
-      lab.w, lab.total_steps, [&] { return cell_shear_strain(lab) < max; },
-      [&] {
-        const double next = cell_shear_strain(lab) + 2.0 * rate * lab.w.dt;
-        return next >= e.next_record || next >= max;
-      },
-      [&] {
-        const double g = cell_shear_strain(lab);
-        if (lab.w.measure_this_step && (g >= e.next_record || g >= max)) {
-          while (e.next_record <= g) e.next_record += every;
-          simple_shear_row(lab);
-        }
-        return false;
-      },
-      [&] { return lab.after_step(); });
+  const double max = lab.s.element.max_shear_strain;
+  shear_to(
+      lab, [&] { return cell_shear_strain(lab); }, max, lab.s.element.shear_rate,
+      [&] { simple_shear_row(lab); });
   lab.w.cell.vel_grad(0, Lab::kDim - 1) = 0.0;
 }
 
@@ -383,24 +393,9 @@ void direct_shear_row(Lab& lab) {
 template <class Lab>
 void run_direct_shear(Lab& lab) {
   if constexpr (Lab::kDim == 2) {
-    auto& e = lab.element;
-    const double max = lab.s.element.max_displacement, v = lab.s.element.shear_velocity;
-    const double every = max / lab.s.history_points;
-    step_loop(
-        lab.w, lab.total_steps, [&] { return frame_displacement(lab) < max; },
-        [&] {
-          const double next = frame_displacement(lab) + 2.0 * v * lab.w.dt;
-          return next >= e.next_record || next >= max;
-        },
-        [&] {
-          const double u = frame_displacement(lab);
-          if (lab.w.measure_this_step && (u >= e.next_record || u >= max)) {
-            while (e.next_record <= u) e.next_record += every;
-            direct_shear_row(lab);
-          }
-          return false;
-        },
-        [&] { return lab.after_step(); });
+    shear_to(
+        lab, [&] { return frame_displacement(lab); }, lab.s.element.max_displacement,
+        lab.s.element.shear_velocity, [&] { direct_shear_row(lab); });
     drive_upper_frame(lab.w, shear_frames(lab.box), 0.0);
   }
 }

@@ -18,58 +18,13 @@
 #include "base/text.hpp"
 #include "lab/run_triaxial.hpp"
 #include "test_util.hpp"
+#include "validation/lab_test_util.hpp"
 
 namespace geodem::test {
 namespace {
 
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  std::size_t col(const std::string& name) const {
-    const auto it = std::find(header.begin(), header.end(), name);
-    EXPECT_NE(it, header.end()) << name;
-    return static_cast<std::size_t>(it - header.begin());
-  }
-};
-
-Csv read_csv(const std::string& path) {
-  Csv c;
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::stringstream hs(line);
-  for (std::string x; std::getline(hs, x, ',');) c.header.push_back(x);
-  while (std::getline(in, line)) {
-    std::stringstream ls(line);
-    std::vector<double> r;
-    for (std::string x; std::getline(ls, x, ',');) r.push_back(std::stod(x));
-    c.rows.push_back(r);
-  }
-  return c;
-}
-
-// A dense sample of 400 discs (2D) or 300 spheres (3D) at 100 kPa.
 TriaxialSettings small_sample(LabKind kind, int dimension, bool periodic) {
-  TriaxialSettings s;
-  s.kind = kind;
-  s.periodic = periodic;
-  s.dimension = dimension;
-  s.box = std::vector<double>(static_cast<std::size_t>(dimension), 1.0);
-  s.count = dimension == 2 ? 400 : 300;
-  s.grain.young = 5e7;
-  s.grain.friction = std::tan(30.0 * std::numbers::pi / 180.0);
-  s.grain.density = 2600;
-  s.wall = s.grain;
-  s.wall.friction = 0.0;
-  s.compaction_stress = 1e5;
-  s.target_porosity = periodic ? (dimension == 2 ? 0.18 : 0.40) : (dimension == 2 ? 0.19 : 0.42);
-  s.max_multiplier = 1.0 + 2e4 / s.grain.young;
-  s.final_max_multiplier = 1.0 + 2e3 / s.grain.young;
-  s.confining_stresses = {1e5};
-  s.servo_gain = periodic ? 0.1 : 0.5;
-  s.vtk = false;
-  s.plots = false;
-  return s;
+  return small_lab_sample(dimension, periodic, kind);
 }
 
 nlohmann::json run(const TriaxialSettings& s, const std::string& tag, Csv* history = nullptr) {

@@ -14,6 +14,7 @@
 
 #include "lab/run_triaxial.hpp"
 #include "test_util.hpp"
+#include "validation/lab_test_util.hpp"
 
 namespace geodem::test {
 namespace {
@@ -22,47 +23,9 @@ template <typename T>
 class Triaxial : public ::testing::Test {};
 TYPED_TEST_SUITE(Triaxial, Dims, DimNames);
 
-std::vector<std::vector<double>> read_csv(const std::string& path,
-                                          std::vector<std::string>& header) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::stringstream hs(line);
-  for (std::string c; std::getline(hs, c, ',');) header.push_back(c);
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::stringstream ls(line);
-    std::vector<double> r;
-    for (std::string c; std::getline(ls, c, ',');) r.push_back(std::stod(c));
-    rows.push_back(r);
-  }
-  return rows;
-}
-
 template <int D>
 TriaxialSettings small_test(bool periodic) {
-  TriaxialSettings s;
-  s.periodic = periodic;
-  s.dimension = D;
-  s.box = std::vector<double>(D, 1.0);
-  s.count = D == 2 ? 400 : 300;
-  s.grain.young = 5e7;
-  s.grain.friction = std::tan(30.0 * std::numbers::pi / 180.0);
-  s.grain.density = 2600;
-  s.wall = s.grain;
-  s.wall.friction = 0.0;
-  s.compaction_stress = 1e5;
-  // Without walls (whose neighbourhood is looser) the same compaction is denser.
-  s.target_porosity = periodic ? (D == 2 ? 0.18 : 0.40) : (D == 2 ? 0.19 : 0.42);
-  s.max_multiplier = 1.0 + 2e4 / s.grain.young;
-  s.final_max_multiplier = 1.0 + 2e3 / s.grain.young;
-  s.strain_rate = 0.02;
-  s.max_axial_strain = 0.02;
-  s.confining_stresses = {1e5};
-  s.servo_gain = periodic ? 0.1 : 0.5;
-  s.vtk = false;
-  s.plots = false;
-  return s;
+  return small_lab_sample(D, periodic);
 }
 
 template <int D>
@@ -81,11 +44,9 @@ void check_preparation_and_servo(bool periodic) {
   EXPECT_NEAR(prep["porosity"].get<double>(), s.target_porosity, 0.005);
   EXPECT_NEAR(prep["mean_stress"].get<double>(), s.compaction_stress, 0.01 * s.compaction_stress);
 
-  std::vector<std::string> header;
-  const auto rows = read_csv(opt.out_dir + "/history.csv", header);
-  const auto col = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
-  };
+  const Csv csv = read_csv(opt.out_dir + "/history.csv");
+  const auto& rows = csv.rows;
+  const auto col = [&](const std::string& name) { return csv.col(name); };
   ASSERT_GT(rows.size(), 50u);
   double worst = 0.0;
   for (const auto& r : rows)
@@ -117,13 +78,10 @@ TYPED_TEST(Triaxial, UndrainedCompressionKeepsTheVolume) {
     opt.quiet = true;
     opt.out_dir = test::unique_temp_dir("undrained" + std::to_string(D) + (periodic ? "p" : "w"));
     const auto summary = run_triaxial(s, opt);
-    std::vector<std::string> header;
-    const auto rows = read_csv(opt.out_dir + "/history.csv", header);
-    const auto col = [&](const std::string& name) {
-      return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) -
-                                      header.begin());
-    };
-    ASSERT_LT(col("excess_pore_pressure"), header.size());
+    const Csv csv = read_csv(opt.out_dir + "/history.csv");
+    const auto& rows = csv.rows;
+    const auto col = [&](const std::string& name) { return csv.col(name); };
+    ASSERT_LT(col("excess_pore_pressure"), csv.header.size());
     double worst_volume = 0.0, worst_u = 0.0;
     for (const auto& r : rows) {
       worst_volume = std::max(worst_volume, std::abs(r[col("volumetric_strain")]));
