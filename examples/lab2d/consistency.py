@@ -120,9 +120,12 @@ def main():
         "dilatancy": per_test("direct_shear", "dilatancy_deg"),
         "corrected": per_test("direct_shear", "phi_peak_dilatancy_corrected_deg")}
     n = len(seeds)
-    lines = [f"Dense disc soil (1,000 discs, contact friction 0.5), {n} seeds, 3 normal or "
-             "confining stresses (50, 100, 200 kPa) each: mean +- standard deviation over the "
-             f"{3 * n} tests (envelopes: over the {n} seeds).", "",
+    kpa = (lambda x: f"{x / 1e3 / (1 if a.soil == 'discs' else 5):g}")  # the soil's stresses
+    soil = ("dense disc soil (1,000 discs, contact friction 0.5)" if a.soil == "discs"
+            else f"preset {a.soil} (1,000 grains)")
+    lines = [f"The {soil}, {n} seeds, 3 normal or confining stresses ({kpa(5e4)}, {kpa(1e5)}, "
+             f"{kpa(2e5)} kPa) each: mean +- standard deviation over the {3 * n} tests "
+             f"(envelopes: over the {n} seeds).", "",
              "| test | envelope phi (deg) | peak phi (deg) | residual phi (deg) | dilatancy at "
              "the peak (deg) | peak phi less dilatancy (deg) |",
              "| --- | ---: | ---: | ---: | ---: | ---: |",
@@ -149,7 +152,7 @@ def main():
                           "Cs": ms([r["swelling_index"] for r in res["oedometer"]])}
     table["isotropic"] = {"Cc": ms([r["compression_index"] for r in res["isotropic"]]),
                           "Cs": ms([r["swelling_index"] for r in res["isotropic"]])}
-    lines += ["", "| K0 on loading (slope of sigma_h on sigma_v) | K0 at 1.6 MPa | Jaky 1 - sin(phi), "
+    lines += ["", f"| K0 on loading (slope of sigma_h on sigma_v) | K0 at {kpa(1.6e6)} kPa | Jaky 1 - sin(phi), "
               "biaxial peak phi | Jaky, biaxial residual phi |", "| ---: | ---: | ---: | ---: |",
               f"| {fmt(k0, 3)} | {fmt(k0_top, 3)} | {jaky_peak:.3f} | {jaky_res:.3f} |", "",
               "| test | compression index Cc | swelling index Cs |", "| --- | ---: | ---: |",
@@ -169,7 +172,7 @@ def main():
                     "damping_ratio": ms([p["damping_ratio"] for p in pts])})
     gmax = ms([r["shear_modulus_max"] for r in res["cyclic"]])
     table["cyclic"] = {"Gmax": gmax, "amplitudes": cyc}
-    lines += ["", f"Cyclic biaxial loading at 100 kPa: Gmax = {gmax[0] / 1e6:.1f} +- "
+    lines += ["", f"Cyclic biaxial loading at {kpa(1e5)} kPa: Gmax = {gmax[0] / 1e6:.1f} +- "
               f"{gmax[1] / 1e6:.1f} MPa (the secant modulus at the smallest amplitude).", "",
               "| axial strain amplitude | shear strain amplitude | G / Gmax | damping ratio (%) |",
               "| ---: | ---: | ---: | ---: |"]
@@ -199,7 +202,8 @@ def main():
                 capsize=3, label="damping")
     bx.set_ylabel("damping ratio D (%)", color="tab:red")
     bx.set_ylim(bottom=0)
-    ax.set_title(f"Cyclic biaxial, 100 kPa, {n} seeds (mean +- std)")
+    ax.set_title(f"Cyclic biaxial, {kpa(1e5)} kPa, {soil.split(' (')[0]}, {n} seeds (mean +- std)",
+                 fontsize=9)
     fig.tight_layout()
     fig.savefig(out / "modulus_damping.png", dpi=120)
 

@@ -310,7 +310,7 @@ void compute_contact_forces(World<D>& world) {
     } else {
       grain_pairs<D, Measure, Extras, false>(world, tallies);
     }
-    grain_walls<D, Measure, Extras>(world, tallies);
+    if (!world.walls.empty()) grain_walls<D, Measure, Extras>(world, tallies);
   };
   const bool extras = world.contact_extras;
   if (world.measure_this_step) {
