@@ -58,6 +58,9 @@ if ((all)); then
   /usr/bin/python3 examples/lab2d/consistency.py "$OUT/lab2d" --seeds 5
   cp "$OUT/lab2d"/consistency.{md,json} "$OUT/lab2d"/{modulus_damping,compression}.png \
     examples/lab2d/expected/
+  /usr/bin/python3 examples/lab2d/consistency.py "$OUT/lab2d_sand" --seeds 5 --soil sand_2d
+  cp "$OUT/lab2d_sand"/consistency.{md,json} "$OUT/lab2d_sand"/{modulus_damping,compression}.png \
+    examples/lab2d/expected/sand_2d/
   for k in oedometer direct_shear simple_shear cyclic; do
     /usr/bin/python3 python/geodem_plot.py "$OUT/lab2d/${k}_seed1" > /dev/null
   done
