@@ -137,7 +137,12 @@ def plot_cyclic(out, summary, h, save):
         sel = m & (cycle == max(last, 0))
         ax.plot(ea[m], q[m], color="0.75", lw=0.6)
         ax.plot(ea[sel], q[sel], color="tab:blue", lw=1.0)
-        title = f"amplitude {amps[k]['axial_strain_amplitude']:.3g}" if k < len(amps) else f"{k}"
+        if k < len(amps):
+            a = amps[k]
+            title = (f"q amplitude {a['q_amplitude'] / 1e3:.3g} kPa" if "q_amplitude" in a
+                     else f"amplitude {a['axial_strain_amplitude']:.3g}")
+        else:
+            title = f"{k}"
         ax.set_title(title, fontsize=9)
         ax.grid(alpha=0.3)
         ax.tick_params(labelsize=7)

@@ -73,6 +73,8 @@ class CellServo : public Controller<D> {
     if (a.stress_controlled != old.stress_controlled || a.target != old.target) sum_[k] = 0.0;
     axes_[k] = a;
   }
+  // Moves a stress-controlled axis's target (a ramp), keeping its integral term.
+  void set_target(int k, double target) { axes_[k].target = target; }
   void save_state(StateWriter& out) const override {
     for (const auto& a : axes_) out(a.stress_controlled), out(a.target), out(a.strain_rate);
     out(sum_);

@@ -212,7 +212,7 @@ CycleResult CycleMeter::result() const {
 }
 
 nlohmann::json cyclic_results(const std::vector<double>& amplitudes, int cycles,
-                              const std::vector<CycleResult>& loops) {
+                              const std::vector<CycleResult>& loops, const char* amplitude_name) {
   nlohmann::json r, curve = nlohmann::json::array();
   const auto per = static_cast<std::size_t>(cycles);
   const std::size_t done = std::min(amplitudes.size(), loops.size() / per);
@@ -224,7 +224,7 @@ nlohmann::json cyclic_results(const std::vector<double>& amplitudes, int cycles,
     for (std::size_t k = a * per; k < (a + 1) * per; ++k)
       every.push_back(
           {{"shear_modulus", loops[k].shear_modulus}, {"damping_ratio", loops[k].damping_ratio}});
-    curve.push_back({{"axial_strain_amplitude", amplitudes[a]},
+    curve.push_back({{amplitude_name, amplitudes[a]},
                      {"shear_strain_amplitude", last.shear_strain_amplitude},
                      {"shear_modulus", last.shear_modulus},
                      {"G_over_Gmax", g_max > 0.0 ? last.shear_modulus / g_max : 0.0},

@@ -91,7 +91,9 @@ struct CycleMeter {
 // The cyclic test's results from its loops (`cycles` per amplitude, in order): each
 // amplitude's last loop with G / Gmax (Gmax: the modulus of the smallest amplitude), and the
 // modulus and damping of every loop.
+// `amplitude_name` names the amplitudes given (axial_strain_amplitude, q_amplitude).
 nlohmann::json cyclic_results(const std::vector<double>& amplitudes, int cycles,
-                              const std::vector<CycleResult>& loops);
+                              const std::vector<CycleResult>& loops,
+                              const char* amplitude_name = "axial_strain_amplitude");
 
 }  // namespace geodem

@@ -1,5 +1,6 @@
 #include "lab/element_test_settings.hpp"
 
+#include "io/output_files.hpp"
 #include "io/toml_reader.hpp"
 #include "lab/triaxial_settings.hpp"
 
@@ -72,15 +73,24 @@ void read_loading(TableReader& l, TriaxialSettings& s) {
       break;
     case LabKind::kCyclicTriaxial: {
       s.confining_stresses = {l.positive("confining_stress", s.compaction_stress)};
+      e.stress_cycles = l.choice("control", "strain", {"strain", "stress"}) == "stress";
       if (!l.has("amplitudes"))
-        l.fail("amplitudes", "missing: the single amplitudes of axial strain, increasing");
+        l.fail("amplitudes",
+               e.stress_cycles ? "missing: the single amplitudes of the deviator q (Pa), increasing"
+                               : "missing: the single amplitudes of axial strain, increasing");
       e.amplitudes = l.numbers("amplitudes", {}, 1);
+      // A stress amplitude stays below the confining stress: the axial stress stays positive.
+      const double top = e.stress_cycles ? s.confining_stresses[0] : 0.05;
       double last = 0.0;
       for (double a : e.amplitudes) {
-        if (!(a > last && a <= 0.05))
-          l.fail("amplitudes", "expected increasing amplitudes of axial strain in (0, 0.05]");
+        if (!(a > last && (e.stress_cycles ? a < top : a <= top)))
+          l.fail("amplitudes", e.stress_cycles
+                                   ? "expected increasing amplitudes of q (Pa) in (0, " +
+                                         format_number(top) + "), below the confining stress"
+                                   : "expected increasing amplitudes of axial strain in (0, 0.05]");
         last = a;
       }
+      if (e.stress_cycles) e.failure_strain = l.in_range("failure_strain", 0.05, 1e-4, 0.3);
       e.cycles = static_cast<int>(l.integer("cycles", 2, 1, 1000));
       e.steps_per_cycle = static_cast<int>(l.integer("steps_per_cycle", 2000, 40, 100'000'000));
       e.points_per_cycle = static_cast<int>(l.integer("points_per_cycle", 200, 8, 100000));

@@ -32,10 +32,12 @@ struct ElementTestSettings {
   double shear_rate = 0.02;      // 1/s
   double max_shear_strain = 0.3;
   // cyclic_triaxial: single amplitudes of axial strain, in increasing order, on one sample
-  std::vector<double> amplitudes;
-  int cycles = 2;              // full cycles per amplitude; the last one is measured
-  int steps_per_cycle = 2000;  // slower than strain_rate where a cycle would be shorter
-  int points_per_cycle = 200;  // rows of history.csv per cycle
+  std::vector<double> amplitudes;  // or of the deviator q (Pa), with stress control
+  bool stress_cycles = false;      // control = "stress": the axial stress cycles
+  double failure_strain = 0.05;    // stress control: the test ends where |axial strain| passes it
+  int cycles = 2;                  // full cycles per amplitude; the last one is measured
+  int steps_per_cycle = 2000;      // slower than strain_rate where a cycle would be shorter
+  int points_per_cycle = 200;      // rows of history.csv per cycle
   // direct_shear
   double shear_velocity = 0.0;    // m/s of the upper frame (default 0.02 x the box height)
   double max_displacement = 0.0;  // m (default 0.1 x the box length)

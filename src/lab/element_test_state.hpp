@@ -19,7 +19,8 @@ struct ElementTest {
   typename Dim<D>::Vec ref = Dim<D>::Vec::Zero();  // cell or box size after consolidation
   std::uint64_t stage = 0;  // stress step (isotropic, oedometer) or amplitude (cyclic)
   std::uint64_t turn = 0;   // cyclic: turning points passed at this amplitude
-  double rate = 0.0;        // cyclic: this amplitude's axial strain rate (1/s)
+  double rate = 0.0;        // cyclic: this amplitude's axial strain rate (1/s) or q rate (Pa/s)
+  double q_target = 0.0;    // cyclic, stress control: the ramped deviator target (Pa)
   double path = 0.0;        // cyclic: axial strain travelled at this amplitude
   double last_strain = 0.0, last_gamma = 0.0;  // cyclic: axial and shear strain a step ago
   double next_record = 0.0;                    // strain (shear, or travelled) of the next row
@@ -33,8 +34,8 @@ struct ElementTest {
 
   template <class Archive>
   void visit(Archive& a) {
-    a(ref), a(stage), a(turn), a(rate), a(path), a(last_strain), a(last_gamma), a(next_record),
-        a(porosity0), a(split), a(plate0);
+    a(ref), a(stage), a(turn), a(rate), a(q_target), a(path), a(last_strain), a(last_gamma),
+        a(next_record), a(porosity0), a(split), a(plate0);
     a(steps.target), a(steps.sigma_axial), a(steps.sigma_lateral), a(steps.axial_strain);
     a(steps.volumetric_strain), a(steps.void_ratio);
     a(curve.shear_strain), a(curve.shear_stress), a(curve.normal_stress), a(curve.normal_strain);

@@ -27,62 +27,13 @@
 #include "controllers/stress_servo.hpp"
 #include "io/step_loop.hpp"
 #include "lab/direct_shear_box.hpp"
+#include "lab/element_drives.hpp"
 #include "lab/element_test_state.hpp"
+#include "lab/run_cyclic_test.hpp"
 #include "measure/measurements.hpp"
 #include "walls/lab_box.hpp"
 
 namespace geodem {
-
-// One axis of a loading step: a stress target, or a strain rate (compression positive).
-struct AxisDrive {
-  bool stress = false;
-  double target = 0.0;
-  double rate = 0.0;
-};
-
-// Installs the controllers that drive each axis as `drives` says, with the periodic cell's
-// shear rate L_xn; the servos made at consolidation (lab/triaxial_controllers.hpp) keep their
-// integral terms while their target stays.
-template <int D>
-void drive_axes(World<D>& w, const LabBox<D>& box, const std::array<AxisDrive, D>& drives,
-                double shear_rate, std::vector<std::shared_ptr<Controller<D>>>& servos) {
-  w.controllers.clear();
-  if (box.periodic) {
-    auto cell = std::static_pointer_cast<CellServo<D>>(servos[0]);
-    for (int k = 0; k < D; ++k)
-      cell->set_axis(k, {drives[k].stress, drives[k].target, -drives[k].rate});
-    w.cell.vel_grad(0, D - 1) = shear_rate;
-    w.controllers.push_back(cell);
-    return;
-  }
-  for (int k = 0; k < D; ++k) {
-    if (drives[k].stress) {
-      auto servo = std::static_pointer_cast<StressServo<D>>(servos[static_cast<std::size_t>(k)]);
-      servo->set_target(drives[k].target);
-      w.controllers.push_back(servo);
-    } else {
-      w.controllers.push_back(std::make_shared<AxialStrainRate<D>>(box, k, drives[k].rate));
-    }
-  }
-}
-
-// The axial stress and the mean lateral stress (compression positive).
-template <int D>
-std::array<double, 2> axial_and_lateral(const World<D>& w, const LabBox<D>& box) {
-  using Tensor = typename Dim<D>::Tensor;
-  const Tensor sigma = box.periodic ? cell_stress(w) : Tensor::Zero().eval();
-  const auto stress = [&](int k) { return box.periodic ? sigma(k, k) : box.stress(w, k); };
-  double lateral = 0.0;
-  for (int k = 0; k < D - 1; ++k) lateral += stress(k) / (D - 1);
-  return {stress(D - 1), lateral};
-}
-
-// Cyclic: the axial strain the loading heads for after `turn` turning points: +A, -A, ...,
-// +A (after `cycles` loops), then back to 0. Even turns go up (compression), odd ones down.
-inline double cycle_target(std::uint64_t turn, double amplitude, int cycles) {
-  if (turn == 2 * static_cast<std::uint64_t>(cycles) + 1) return 0.0;
-  return turn % 2 == 0 ? amplitude : -amplitude;
-}
 
 template <class Lab>
 void install_element_drives(Lab& lab) {
@@ -104,7 +55,10 @@ void install_element_drives(Lab& lab) {
       break;
     case LabKind::kCyclicTriaxial:
       for (int k = 0; k < D - 1; ++k) d[k] = {true, lab.sigma3(), 0.0};
-      d[D - 1].rate = (e.turn % 2 == 0 ? 1.0 : -1.0) * e.rate;
+      if (p.stress_cycles)
+        d[D - 1] = {true, lab.sigma3() + e.q_target, 0.0};
+      else
+        d[D - 1].rate = (e.turn % 2 == 0 ? 1.0 : -1.0) * e.rate;
       break;
     case LabKind::kDirectShear:
       if constexpr (D == 2) {
@@ -120,12 +74,6 @@ void install_element_drives(Lab& lab) {
       break;
   }
   drive_axes<D>(lab.w, lab.box, d, shear, lab.servos);
-}
-
-template <class Lab>
-double void_ratio(const Lab& lab) {
-  const double n = lab.porosity();
-  return n / (1.0 - n);
 }
 
 // A row of an isotropic or oedometer test; a point at rest is also kept for the results.
@@ -144,21 +92,6 @@ void stress_step_row(Lab& lab, double unbalanced, bool at_rest, double target) {
   auto& p = e.steps;
   p.target.push_back(target), p.sigma_axial.push_back(sa), p.sigma_lateral.push_back(sl);
   p.axial_strain.push_back(ea), p.volumetric_strain.push_back(ev), p.void_ratio.push_back(void_r);
-}
-
-// Cyclic: the rate of this amplitude: the test's strain rate, or slower where a cycle would
-// take fewer than steps_per_cycle steps (a small amplitude).
-template <class Lab>
-void begin_amplitude(Lab& lab) {
-  auto& e = lab.element;
-  const auto& p = lab.s.element;
-  const double a = p.amplitudes[e.stage];
-  e.turn = 0, e.path = 0.0, e.next_record = 0.0;
-  constexpr int D = Lab::kDim;
-  e.last_strain = lab.box.strain(lab.w, D - 1, e.ref);
-  e.last_gamma = e.last_strain;
-  for (int k = 0; k < D - 1; ++k) e.last_gamma -= lab.box.strain(lab.w, k, e.ref) / (D - 1);
-  e.rate = std::min(lab.s.strain_rate, 4.0 * a / (p.steps_per_cycle * lab.w.dt));
 }
 
 // After consolidation: the reference state, the first point, the first step's drives.
@@ -281,70 +214,6 @@ void run_simple_shear(Lab& lab) {
   lab.w.cell.vel_grad(0, Lab::kDim - 1) = 0.0;
 }
 
-template <class Lab>
-void run_cycles(Lab& lab) {
-  constexpr int D = Lab::kDim;
-  auto& e = lab.element;
-  const auto& p = lab.s.element;
-  const std::uint64_t last_turn = 2 * static_cast<std::uint64_t>(p.cycles) + 1;
-  // Shear stress and strain of the loop integral: tau = q / 2, gamma = eps_a - eps_r.
-  const auto tau_gamma = [&](double& eps) {
-    const auto [sa, sl] = axial_and_lateral(lab.w, lab.box);
-    eps = lab.box.strain(lab.w, D - 1, e.ref);
-    double er = 0.0;
-    for (int k = 0; k < D - 1; ++k) er += lab.box.strain(lab.w, k, e.ref) / (D - 1);
-    return std::array<double, 4>{0.5 * (sa - sl), eps - er, sa, sl};
-  };
-  while (e.stage < p.amplitudes.size()) {
-    const double amp = p.amplitudes[e.stage];
-    const double every = 4.0 * amp / p.points_per_cycle;
-    step_loop(
-        lab.w, lab.total_steps, [&] { return e.turn <= last_turn; },
-        [&] { return e.path + 2.0 * e.rate * lab.w.dt >= e.next_record; },
-        [&] {
-          // This step's stresses were summed in the configuration it started from: they pair
-          // with the strains before its deformation (a pairing one step off would add a loop
-          // area of about -2 / (pi steps_per_cycle) to the damping ratio).
-          double eps = 0.0;
-          const auto [tau, gamma_now, sa, sl] = tau_gamma(eps);
-          const double gamma = e.last_gamma, eps_then = e.last_strain;
-          e.path += std::abs(eps - e.last_strain);
-          e.last_strain = eps, e.last_gamma = gamma_now;
-          e.loop.add(tau, gamma);
-          if (lab.w.measure_this_step && e.path >= e.next_record) {
-            while (e.next_record <= e.path) e.next_record += every;
-            lab.history.row({static_cast<double>(e.stage), static_cast<double>((e.turn + 1) / 2),
-                             static_cast<double>(lab.w.step), lab.w.time, eps, eps - gamma_now,
-                             gamma_now, sa, sl, sa - sl, (sa + (D - 1) * sl) / D, void_ratio(lab),
-                             unbalanced_force_ratio(lab.w)});
-            lab.progress.update(cat("cyclic amplitude ", e.stage + 1, "/", p.amplitudes.size()),
-                                lab.w.step, lab.w.time,
-                                static_cast<double>(e.turn) / static_cast<double>(last_turn + 1),
-                                "q " + format_sig(sa - sl) + " Pa");
-          }
-          const double target = cycle_target(e.turn, amp, p.cycles);
-          if (e.turn % 2 == 0 ? eps < target : eps > target) return false;
-          if (e.turn % 2 == 0) {  // at +A: a loop closes, the next one starts
-            if (e.loop.started) e.loops.push_back(e.loop.result());
-            e.loop.started = 0;
-            if (e.turn + 1 < last_turn)
-              e.loop.start(tau, gamma), e.loop.turn_high(tau, gamma, eps_then);
-          } else if (e.turn != last_turn) {  // at -A
-            e.loop.turn_low(tau, gamma, eps_then);
-          }
-          ++e.turn;
-          if (e.turn <= last_turn) install_element_drives(lab);
-          return false;
-        },
-        [&] { return lab.after_step(); });
-    if (lab.s.vtk) lab.vtk.write(lab.w);
-    if (++e.stage < p.amplitudes.size()) {
-      begin_amplitude(lab);
-      install_element_drives(lab);
-    }
-  }
-}
-
 // Direct shear: the upper frame's displacement is its left side's position.
 template <class Lab>
 double frame_displacement(const Lab& lab) {
@@ -436,7 +305,9 @@ nlohmann::json element_test_results(const Lab& lab) {
       r["control"] = lab.s.element.constant_volume ? "constant_volume" : "constant_stress";
       break;
     case LabKind::kCyclicTriaxial:
-      r = cyclic_results(lab.s.element.amplitudes, lab.s.element.cycles, e.loops);
+      r = cyclic_results(lab.s.element.amplitudes, lab.s.element.cycles, e.loops,
+                         lab.s.element.stress_cycles ? "q_amplitude" : "axial_strain_amplitude");
+      r["control"] = lab.s.element.stress_cycles ? "stress" : "strain";
       r["confining_stress"] = lab.sigma3();
       break;
     case LabKind::kDirectShear:

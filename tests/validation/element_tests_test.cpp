@@ -137,6 +137,31 @@ TEST(ElementTests, CyclicModulusFallsAndDampingRisesWithTheAmplitude) {
   EXPECT_GT(d[3], d[2]);
 }
 
+// Stress control: each loop reaches its amplitude of q (within the 1 % the turn waits for),
+// the modulus falls with it; an amplitude the sample cannot carry ends the test at the
+// failure strain with a warning and the amplitudes before it measured.
+TEST(ElementTests, StressControlledCyclesReachTheirAmplitudesOrStopAtFailure) {
+  TriaxialSettings s = small_sample(LabKind::kCyclicTriaxial, 2, true);
+  s.element.stress_cycles = true;
+  s.element.amplitudes = {1e3, 1e4, 3e4, 9e4};
+  s.element.cycles = 2;
+  const auto r = run(s, "cyclic_stress");
+  const auto& a = r["amplitudes"];
+  ASSERT_EQ(a.size(), 3u);  // 90 kPa of q in extension exceeds the strength at 100 kPa
+  double worst = 0.0;
+  for (const auto& x : a) {
+    const double q =
+        2.0 * x["shear_modulus"].get<double>() * x["shear_strain_amplitude"].get<double>();
+    worst = std::max(worst, std::abs(q / x["q_amplitude"].get<double>() - 1.0));
+  }
+  report("cyclic, stress control: largest |q range / 2 / amplitude - 1|", worst);
+  EXPECT_LT(worst, 0.02);
+  EXPECT_LT(a[2]["G_over_Gmax"].get<double>(), a[1]["G_over_Gmax"].get<double>());
+  EXPECT_GT(a[2]["damping_ratio"].get<double>(), a[1]["damping_ratio"].get<double>());
+  ASSERT_TRUE(r.contains("warning"));
+  EXPECT_NE(r["warning"].get<std::string>().find("failed"), std::string::npos);
+}
+
 TEST(ElementTests, DirectShearBoxHoldsItsNormalStressAndItsGrains) {
   TriaxialSettings s = small_sample(LabKind::kDirectShear, 2, false);
   s.box = {1.0, 0.5};
