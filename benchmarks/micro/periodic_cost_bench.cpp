@@ -70,6 +70,8 @@ void BM_Step(benchmark::State& state) {
   state.counters["steps_per_build"] =
       static_cast<double>(state.iterations()) /
       static_cast<double>(std::max<std::uint64_t>(1, w.nlist.builds - builds));
+  state.counters["listed_pairs"] = static_cast<double>(w.nlist.other.size());
+  state.counters["wall_pairs"] = static_cast<double>(w.nlist.wall.size());
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
 }
 
