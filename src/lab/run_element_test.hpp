@@ -177,6 +177,20 @@ double cell_shear_strain(const Lab& lab) {
   return lab.w.cell.h(0, n) / lab.w.cell.h(n, n);
 }
 
+// A point of a shear curve (the shear strain or displacement x, up to `max`), and the progress.
+template <class Lab>
+void add_shear_point(Lab& lab, const char* name, double x, double max, double tau, double sn,
+                     double normal_strain, double phi, double void_r) {
+  auto& c = lab.element.curve;
+  c.shear_strain.push_back(x), c.shear_stress.push_back(tau), c.normal_stress.push_back(sn);
+  c.normal_strain.push_back(normal_strain), c.phi_mobilised_deg.push_back(phi);
+  c.void_ratio.push_back(void_r);
+  const double tests = static_cast<double>(lab.s.confining_stresses.size());
+  lab.progress.update(cat(name, lab.test + 1, "/", lab.s.confining_stresses.size()), lab.w.step,
+                      lab.w.time, x / max, "tau/sigma_n " + format_sig(tau / sn),
+                      (static_cast<double>(lab.test) + x / max) / tests);
+}
+
 template <class Lab>
 void simple_shear_row(Lab& lab) {
   constexpr int D = Lab::kDim, n = D - 1;
@@ -195,14 +209,8 @@ void simple_shear_row(Lab& lab) {
   lab.history.row({static_cast<double>(lab.test), static_cast<double>(lab.w.step), lab.w.time,
                    gamma, en, ev, sn, tau, tau / sn, s1, s3, phi, sigma.trace() / D, void_r,
                    coordination_number(lab.w), unbalanced_force_ratio(lab.w)});
-  auto& c = e.curve;
-  c.shear_strain.push_back(gamma), c.shear_stress.push_back(tau), c.normal_stress.push_back(sn);
-  c.normal_strain.push_back(en), c.phi_mobilised_deg.push_back(phi), c.void_ratio.push_back(void_r);
-  const double max = lab.s.element.max_shear_strain;
-  lab.progress.update(cat("simple shear ", lab.test + 1, "/", lab.s.confining_stresses.size()),
-                      lab.w.step, lab.w.time, gamma / max, "tau/sigma_n " + format_sig(tau / sn),
-                      (static_cast<double>(lab.test) + gamma / max) /
-                          static_cast<double>(lab.s.confining_stresses.size()));
+  add_shear_point(lab, "simple shear ", gamma, lab.s.element.max_shear_strain, tau, sn, en, phi,
+                  void_r);
 }
 
 template <class Lab>
@@ -247,15 +255,8 @@ void direct_shear_row(Lab& lab) {
     lab.history.row({static_cast<double>(lab.test), static_cast<double>(lab.w.step), lab.w.time, u,
                      tau, sn, tau / sn, rise, void_r, coordination_number(lab.w),
                      unbalanced_force_ratio(lab.w)});
-    auto& c = e.curve;
-    c.shear_strain.push_back(u), c.shear_stress.push_back(tau), c.normal_stress.push_back(sn);
-    c.normal_strain.push_back(-rise), c.void_ratio.push_back(void_r);
-    c.phi_mobilised_deg.push_back(std::atan(tau / sn) * 180.0 / std::numbers::pi);
-    const double max = lab.s.element.max_displacement;
-    lab.progress.update(cat("direct shear ", lab.test + 1, "/", lab.s.confining_stresses.size()),
-                        lab.w.step, lab.w.time, u / max, "tau/sigma_n " + format_sig(tau / sn),
-                        (static_cast<double>(lab.test) + u / max) /
-                            static_cast<double>(lab.s.confining_stresses.size()));
+    add_shear_point(lab, "direct shear ", u, lab.s.element.max_displacement, tau, sn, -rise,
+                    std::atan(tau / sn) * 180.0 / std::numbers::pi, void_r);
   }
 }
 
