@@ -29,8 +29,12 @@ inline bool shear_box_split(const World<2>& w) {
   return w.walls.size() == 8;
 }
 
-// Splits the box's sides at height `split`; the lips reach `travel` past the sides.
-inline ShearFrames split_shear_box(World<2>& w, const LabBox<2>& box, double split, double travel) {
+// Splits the box's sides at height `split`; the lips reach `travel` past the sides. With a
+// `gap`, the upper frame (its sides and lip) starts that much above the split plane, as a
+// laboratory box's upper frame is lifted off the lower one: its corners then ride above the
+// lower frame's grains instead of pushing the top ones along.
+inline ShearFrames split_shear_box(World<2>& w, const LabBox<2>& box, double split, double travel,
+                                   double gap = 0.0) {
   using Vec = Dim<2>::Vec;
   const ShearFrames f = shear_frames(box);
   const double length = box.size(w).x();
@@ -48,9 +52,10 @@ inline ShearFrames split_shear_box(World<2>& w, const LabBox<2>& box, double spl
   };
   segment(box.lo[0], "lower_left", Vec(0.0, 0.0), Vec(0.0, split));
   segment(box.hi[0], "lower_right", Vec(length, 0.0), Vec(length, split));
-  segment(4, "upper_left", Vec(0.0, split), Vec(0.0, top));
-  segment(5, "upper_right", Vec(length, split), Vec(length, top));
-  segment(6, "upper_lip", Vec(-travel, split), Vec(0.0, split));
+  const double upper = split + gap;
+  segment(4, "upper_left", Vec(0.0, upper), Vec(0.0, top));
+  segment(5, "upper_right", Vec(length, upper), Vec(length, top));
+  segment(6, "upper_lip", Vec(-travel, upper), Vec(0.0, upper));
   segment(7, "lower_lip", Vec(length, split), Vec(length + travel, split));
   w.walls[6].owns_end_vertex = false;  // the upper frame's corner belongs to its side
   w.walls[box.hi[0]].owns_end_vertex = false;

@@ -64,6 +64,7 @@ void read_loading(TableReader& l, TriaxialSettings& s) {
         const double length = s.box.front(), height = s.box.back();
         e.shear_velocity = l.positive("shear_velocity", 0.02 * height);
         e.max_displacement = l.in_range("max_displacement", 0.1 * length, 1e-9, 0.5 * length);
+        e.frame_gap = l.in_range("frame_gap", 0.0, 0.0, 0.1 * height);
         break;
       }
       e.constant_volume = l.choice("control", "constant_stress",

@@ -41,6 +41,7 @@ struct ElementTestSettings {
   // direct_shear
   double shear_velocity = 0.0;    // m/s of the upper frame (default 0.02 x the box height)
   double max_displacement = 0.0;  // m (default 0.1 x the box length)
+  double frame_gap = 0.0;         // m: the upper frame lifted off the lower one
 };
 
 struct TriaxialSettings;

@@ -65,7 +65,7 @@ void install_element_drives(Lab& lab) {
         // The lips reach a tenth of the box length past the largest displacement.
         if (!shear_box_split(lab.w))
           split_shear_box(lab.w, lab.box, e.split,
-                          p.max_displacement + 0.1 * lab.box.size(lab.w).x());
+                          p.max_displacement + 0.1 * lab.box.size(lab.w).x(), p.frame_gap);
         drive_upper_frame(lab.w, shear_frames(lab.box), p.shear_velocity);
         lab.w.controllers = {lab.servos[0]};
       }
