@@ -1,5 +1,6 @@
 // The lab kinds: kind = "triaxial" and its element tests ("isotropic", "oedometer",
-// "simple_shear", "cyclic_triaxial"), "pullout", "interface_shear" (docs/lab_tests.md).
+// "simple_shear", "cyclic_triaxial", "direct_shear"; docs/element_tests.md), "pullout",
+// "interface_shear" (docs/lab_tests.md).
 #include <algorithm>
 #include <cstdio>
 

@@ -225,7 +225,7 @@ void run_simple_shear(Lab& lab) {
 // Direct shear: the upper frame's displacement is its left side's position.
 template <class Lab>
 double frame_displacement(const Lab& lab) {
-  return lab.w.walls[4].point[0];
+  return lab.w.walls[shear_frames(lab.box).upper[0]].point[0];
 }
 
 // Grains whose centres lie outside both frames (the lips keep them in: 0).
