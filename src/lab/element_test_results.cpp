@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+
+#include "study/linear_fit.hpp"
 
 namespace geodem {
 
@@ -10,17 +13,17 @@ namespace {
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
-// Slope of y against x by least squares over [first, last]; NaN with fewer than 2 points.
+// Slope of y against x by least squares (study/linear_fit) over the points [first, last];
+// NaN where it is not defined (fewer than two points, or one x).
 double slope(const std::vector<double>& x, const std::vector<double>& y, std::size_t first,
              std::size_t last) {
   if (last <= first || last >= x.size()) return std::nan("");
-  double mx = 0.0, my = 0.0;
-  const double n = static_cast<double>(last - first + 1);
-  for (std::size_t i = first; i <= last; ++i) mx += x[i] / n, my += y[i] / n;
-  double sxy = 0.0, sxx = 0.0;
-  for (std::size_t i = first; i <= last; ++i)
-    sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
-  return sxx > 0.0 ? sxy / sxx : std::nan("");
+  const auto a = static_cast<std::ptrdiff_t>(first), b = static_cast<std::ptrdiff_t>(last) + 1;
+  try {
+    return fit_line({x.begin() + a, x.begin() + b}, {y.begin() + a, y.begin() + b}).slope;
+  } catch (const std::invalid_argument&) {
+    return std::nan("");
+  }
 }
 
 // A number, or null where it is not defined (JSON has no NaN).
@@ -172,16 +175,15 @@ nlohmann::json direct_shear_results(const ShearCurve& c) {
 ShearEnvelope fit_shear_envelope(const std::vector<double>& sigma_n,
                                  const std::vector<double>& tau) {
   ShearEnvelope e;
-  if (sigma_n.size() == 1) {
-    e.phi_deg = std::atan(tau[0] / sigma_n[0]) * kDeg;
+  // One normal stress (or the same one repeated): the line through the origin.
+  if (*std::min_element(sigma_n.begin(), sigma_n.end()) ==
+      *std::max_element(sigma_n.begin(), sigma_n.end())) {
+    e.phi_deg = std::atan(mean(tau) / sigma_n[0]) * kDeg;
     return e;
   }
-  const double t = slope(sigma_n, tau, 0, sigma_n.size() - 1);
-  double ms = 0.0, mt = 0.0;
-  for (std::size_t i = 0; i < tau.size(); ++i) ms += sigma_n[i], mt += tau[i];
-  ms /= static_cast<double>(tau.size()), mt /= static_cast<double>(tau.size());
-  e.phi_deg = std::atan(t) * kDeg;
-  e.cohesion = mt - t * ms;
+  const LinearFit f = fit_line(sigma_n, tau);
+  e.phi_deg = std::atan(f.slope) * kDeg;
+  e.cohesion = f.intercept;
   return e;
 }
 

@@ -119,6 +119,9 @@ TEST(ElementTestResults, ShearEnvelopeOfPointsOnALine) {
   const auto one = fit_shear_envelope({1e5}, {5e4});
   EXPECT_NEAR(one.phi_deg, std::atan(0.5) * 180.0 / kPi, 1e-12);
   EXPECT_EQ(one.cohesion, 0.0);
+  const auto repeated = fit_shear_envelope({1e5, 1e5}, {4e4, 6e4});  // through the origin
+  EXPECT_NEAR(repeated.phi_deg, std::atan(0.5) * 180.0 / kPi, 1e-12);
+  EXPECT_EQ(repeated.cohesion, 0.0);
 }
 
 }  // namespace
