@@ -14,7 +14,7 @@
 namespace {
 
 template <int D>
-geodem::World<D> shaken_lattice(std::size_t n_target, bool periodic) {
+geodem::World<D> shaken_lattice(std::size_t n_target, bool periodic, bool shuffled) {
   using Vec = typename geodem::Dim<D>::Vec;
   geodem::World<D> w;
   geodem::Material m;
@@ -36,6 +36,15 @@ geodem::World<D> shaken_lattice(std::size_t n_target, bool periodic) {
         for (int k = 0; k < D; ++k) v[k] = 0.8 * (rng.uniform() - 0.5);
         w.particles.vel.back() = v;
       }
+  if (shuffled) {
+    // Grains in random memory order, as a generated sample holds them.
+    std::vector<std::uint32_t> order(w.particles.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = order.size(); i > 1; --i)
+      std::swap(order[i - 1],
+                order[static_cast<std::size_t>(rng.uniform() * static_cast<double>(i))]);
+    w.particles.permute(order);
+  }
   if (periodic) {
     w.cell.periodic = true;
     w.cell.h = Vec::Constant(period).asDiagonal();
@@ -63,7 +72,8 @@ geodem::World<D> shaken_lattice(std::size_t n_target, bool periodic) {
 
 template <int D>
 void BM_Step(benchmark::State& state) {
-  auto w = shaken_lattice<D>(static_cast<std::size_t>(state.range(0)), state.range(1) != 0);
+  auto w = shaken_lattice<D>(static_cast<std::size_t>(state.range(0)), state.range(1) != 0,
+                             state.range(2) != 0);
   for (int i = 0; i < 200; ++i) geodem::step(w);  // past the first rebuilds
   const auto builds = w.nlist.builds;
   for (auto _ : state) geodem::step(w);
@@ -77,6 +87,6 @@ void BM_Step(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_Step<2>)->ArgsProduct({{20000}, {0, 1}})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Step<3>)->ArgsProduct({{20000}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Step<2>)->ArgsProduct({{20000}, {0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Step<3>)->ArgsProduct({{20000}, {0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

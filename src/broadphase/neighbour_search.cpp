@@ -230,6 +230,13 @@ void build_neighbour_list(World<D>& world) {
 
   if (world.cell.periodic && n > 0) {
     wrap_into_cell(world);
+    if (world.sort_interval > 0 &&
+        L.builds % static_cast<std::uint64_t>(world.sort_interval) == 0) {
+      // The old rows' images are not carried: the history merges by partner index, and a
+      // pair has one image within reach (the cell is at least three reaches across).
+      renumber(world, old, L, have_old, periodic_spatial_order(world));
+      reset_rows();
+    }
     list_periodic_pairs(world);
   } else if (n > 0) {
     // Grid bounds: the grains' bounding box; far outliers are clamped to the edge cells.

@@ -45,58 +45,92 @@ void wrap_into_cell(World<D>& world) {
   if (moved) place_members(world);
 }
 
+namespace {
+
+// The grains binned in the cell's fractional coordinates, bins at least a search reach wide
+// across the faces, filled by a counting sort. Kept between builds, one per calling thread.
+struct PeriodicBins {
+  std::array<int, 3> nb{1, 1, 1};
+  std::vector<std::array<int, 3>> bin_of;
+  std::vector<CellImage> outside;  // a clump member beyond the faces: by how many edges
+  std::vector<std::uint32_t> bin_start, sorted, fill;
+  std::size_t index(const std::array<int, 3>& b) const {
+    return static_cast<std::size_t>((b[2] * nb[1] + b[1]) * nb[0] + b[0]);
+  }
+};
+
 template <int D>
-void list_periodic_pairs(World<D>& world) {
+PeriodicBins& bin_grains(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
+  static thread_local PeriodicBins bins;
+  PeriodicBins& g = bins;
   const auto& P = world.particles;
-  auto& L = world.nlist;
   auto& cell = world.cell;
   const std::size_t n = P.size();
   double rmax = 0.0;
   for (double r : P.radius) rmax = std::max(rmax, r);
-  const double reach = 2.0 * rmax + L.skin;
+  const double reach = 2.0 * rmax + world.nlist.skin;
   cell.reach_at_build = reach;
   const Vec widths = cell.widths();
-  std::array<int, 3> nb{1, 1, 1};
+  g.nb = {1, 1, 1};
   for (int k = 0; k < D; ++k) {
-    nb[k] = static_cast<int>(std::floor(widths[k] / reach));
-    if (nb[k] < 3)
+    g.nb[k] = static_cast<int>(std::floor(widths[k] / reach));
+    if (g.nb[k] < 3)
       throw InputError("", 0, "cell",
                        "the periodic cell is " + std::to_string(widths[k]) +
                            " m across its faces " + std::to_string(k) +
                            ", less than three times the largest diameter plus the skin (" +
                            std::to_string(3.0 * reach) + " m): make the cell larger");
     // Few grains in a large cell: bins of about one grain each are enough (n^(1/D) per axis).
-    nb[k] = std::min(nb[k], 4 * static_cast<int>(std::pow(static_cast<double>(n), 1.0 / D)) + 8);
+    g.nb[k] =
+        std::min(g.nb[k], 4 * static_cast<int>(std::pow(static_cast<double>(n), 1.0 / D)) + 8);
   }
-  // Bins in fractional coordinates, filled by a counting sort.
   const typename Dim<D>::Tensor h_inv = cell.h.inverse();
-  static thread_local std::vector<std::array<int, 3>> bin_of;
-  static thread_local std::vector<CellImage> outside;  // a clump member beyond the faces
-  static thread_local std::vector<std::uint32_t> bin_start, sorted, fill;
-  bin_of.assign(n, {0, 0, 0});
-  outside.assign(n, CellImage{});
-  const std::size_t nbins = static_cast<std::size_t>(nb[0]) * nb[1] * nb[2];
-  auto index = [&](const std::array<int, 3>& b) {
-    return static_cast<std::size_t>((b[2] * nb[1] + b[1]) * nb[0] + b[0]);
-  };
-  bin_start.assign(nbins + 1, 0);
+  g.bin_of.assign(n, {0, 0, 0});
+  g.outside.assign(n, CellImage{});
+  const std::size_t nbins = static_cast<std::size_t>(g.nb[0]) * g.nb[1] * g.nb[2];
+  g.bin_start.assign(nbins + 1, 0);
   // A clump member may lie beyond the faces (its clump was moved back by its centre): it is
   // binned where its image inside the cell is, and remembers by how many edges it is out.
   for (std::size_t i = 0; i < n; ++i) {
     const Vec s = h_inv * P.pos[i];
     for (int k = 0; k < D; ++k) {
       const double whole = std::floor(s[k]);
-      outside[i].m[k] = static_cast<std::int8_t>(whole);
-      bin_of[i][k] = std::clamp(static_cast<int>(std::floor((s[k] - whole) * nb[k])), 0, nb[k] - 1);
+      g.outside[i].m[k] = static_cast<std::int8_t>(whole);
+      g.bin_of[i][k] =
+          std::clamp(static_cast<int>(std::floor((s[k] - whole) * g.nb[k])), 0, g.nb[k] - 1);
     }
-    ++bin_start[index(bin_of[i]) + 1];
+    ++g.bin_start[g.index(g.bin_of[i]) + 1];
   }
-  for (std::size_t b = 0; b < nbins; ++b) bin_start[b + 1] += bin_start[b];
-  sorted.resize(n);
-  fill.assign(bin_start.begin(), bin_start.end() - 1);
+  for (std::size_t b = 0; b < nbins; ++b) g.bin_start[b + 1] += g.bin_start[b];
+  g.sorted.resize(n);
+  g.fill.assign(g.bin_start.begin(), g.bin_start.end() - 1);
   for (std::size_t i = 0; i < n; ++i)
-    sorted[fill[index(bin_of[i])]++] = static_cast<std::uint32_t>(i);
+    g.sorted[g.fill[g.index(g.bin_of[i])]++] = static_cast<std::uint32_t>(i);
+  return g;
+}
+
+}  // namespace
+
+template <int D>
+std::vector<std::uint32_t> periodic_spatial_order(World<D>& world) {
+  return bin_grains(world).sorted;
+}
+
+template <int D>
+void list_periodic_pairs(World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  const auto& P = world.particles;
+  auto& L = world.nlist;
+  const auto& cell = world.cell;
+  const std::size_t n = P.size();
+  const PeriodicBins& g = bin_grains(world);
+  const auto& nb = g.nb;
+  const auto& bin_of = g.bin_of;
+  const auto& outside = g.outside;
+  const auto& bin_start = g.bin_start;
+  const auto& sorted = g.sorted;
+  auto index = [&g](const std::array<int, 3>& b) { return g.index(b); };
 
   const bool clumps = !P.clump.empty();
   const int zr = D == 3 ? 1 : 0;
@@ -153,5 +187,7 @@ template void wrap_into_cell<2>(World<2>&);
 template void wrap_into_cell<3>(World<3>&);
 template void list_periodic_pairs<2>(World<2>&);
 template void list_periodic_pairs<3>(World<3>&);
+template std::vector<std::uint32_t> periodic_spatial_order<2>(World<2>&);
+template std::vector<std::uint32_t> periodic_spatial_order<3>(World<3>&);
 
 }  // namespace geodem

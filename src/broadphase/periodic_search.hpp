@@ -20,4 +20,10 @@ void wrap_into_cell(World<D>& world);
 template <int D>
 void list_periodic_pairs(World<D>& world);
 
+// The grains in the order of their bins, for renumbering them in spatial order (the walls'
+// grid search does the same with its grid cells): grains near each other in the cell, also
+// across the faces' bins, then lie near each other in memory.
+template <int D>
+std::vector<std::uint32_t> periodic_spatial_order(World<D>& world);
+
 }  // namespace geodem

@@ -117,24 +117,37 @@ TEST(ElementTests, SimpleShearAtConstantVolumeAndAtConstantNormalStress) {
   }
 }
 
+// One 400-disc sample is an anecdote: at 1e-4 one seed's G/Gmax is 0.96, the others' 1.00.
+// The curves fall and rise on every seed; the levels are asserted on the mean of 5 seeds.
 TEST(ElementTests, CyclicModulusFallsAndDampingRisesWithTheAmplitude) {
-  TriaxialSettings s = small_sample(LabKind::kCyclicTriaxial, 2, true);
-  s.element.amplitudes = {1e-5, 1e-4, 1e-3, 1e-2};
-  s.element.cycles = 2;
-  const auto r = run(s, "cyclic");
-  const auto& a = r["amplitudes"];
-  ASSERT_EQ(a.size(), 4u);
-  std::vector<double> g, d;
-  for (const auto& x : a) g.push_back(x["G_over_Gmax"]), d.push_back(x["damping_ratio"]);
+  const std::vector<double> amplitudes{1e-5, 1e-4, 1e-3, 1e-2};
+  const int seeds = 5;
+  std::vector<double> g_mean(4, 0.0), d_mean(4, 0.0);
+  for (int seed = 1; seed <= seeds; ++seed) {
+    TriaxialSettings s = small_sample(LabKind::kCyclicTriaxial, 2, true);
+    s.seed = static_cast<std::uint64_t>(seed);
+    s.element.amplitudes = amplitudes;
+    s.element.cycles = 2;
+    const auto r = run(s, cat("cyclic", seed));
+    const auto& a = r["amplitudes"];
+    ASSERT_EQ(a.size(), 4u);
+    std::vector<double> g, d;
+    for (const auto& x : a) g.push_back(x["G_over_Gmax"]), d.push_back(x["damping_ratio"]);
+    for (std::size_t i = 0; i < 4; ++i) {
+      g_mean[i] += g[i] / seeds;
+      d_mean[i] += d[i] / seeds;
+    }
+    EXPECT_LT(g[2], g[1]) << "seed " << seed;
+    EXPECT_LT(g[3], g[2]) << "seed " << seed;
+    EXPECT_LT(std::abs(d[0]), 0.01) << "seed " << seed;
+    EXPECT_GT(d[2], d[1]) << "seed " << seed;
+    EXPECT_GT(d[3], d[2]) << "seed " << seed;
+  }
   for (std::size_t i = 0; i < 4; ++i)
-    report(cat("cyclic: amplitude ", s.element.amplitudes[i], " G/Gmax"), g[i]),
-        report(cat("cyclic: amplitude ", s.element.amplitudes[i], " damping"), d[i]);
-  EXPECT_NEAR(g[1], 1.0, 0.02);  // still elastic at 1e-4
-  EXPECT_LT(g[2], 0.95);
-  EXPECT_LT(g[3], g[2]);
-  EXPECT_LT(std::abs(d[0]), 0.01);
-  EXPECT_GT(d[2], d[1]);
-  EXPECT_GT(d[3], d[2]);
+    report(cat("cyclic, 5 seeds: amplitude ", amplitudes[i], " mean G/Gmax"), g_mean[i]),
+        report(cat("cyclic, 5 seeds: amplitude ", amplitudes[i], " mean damping"), d_mean[i]);
+  EXPECT_NEAR(g_mean[1], 1.0, 0.02);  // still elastic at 1e-4
+  EXPECT_LT(g_mean[2], 0.95);
 }
 
 // Stress control: each loop reaches its amplitude of q (within the 1 % the turn waits for),

@@ -5,6 +5,7 @@
 //   the boundary and wrapped back at every rebuild, has the forces of the same pair in the
 //   middle of the cell (1e-9 relative): the contact keeps its history across the boundary;
 // - a dense gas colliding through the faces conserves momentum (1e-12 relative);
+// - the cell's sum of d f^T is the per-contact sum of a measured step (1e-12);
 // - a simple-shear velocity gradient carries grains without contacts on the imposed
 //   homogeneous profile, x(t) = x0 + gamma_dot y0 t (1e-12), and tilts the cell;
 // - the cell servo holds an isotropic stress target, then the lateral stresses of a
@@ -151,6 +152,40 @@ TYPED_TEST(PeriodicCellTest, CollisionsThroughTheFacesConserveMomentum) {
   report(std::to_string(D) + "D gas through the faces: momentum drift / sum |p|", drift);
   EXPECT_LT(drift, 1e-12);
   EXPECT_GT(crossing_contacts, 100u);
+}
+
+// The cell's sum of d f^T (3D: summed over grains as x F^T plus the image offsets' part) is
+// the sum over contacts that a measured step takes pair by pair, in a sheared cell where
+// grains collide through the faces: the same to rounding (1e-12 of sum |f| times the
+// largest branch).
+TYPED_TEST(PeriodicCellTest, CellFabricIsTheSumOverContacts) {
+  constexpr int D = TypeParam::value;
+  const Vec<D> size = Vec<D>::Constant(D == 2 ? 40 * kR : 16 * kR);
+  const double kn = D == 2 ? 1e6 : 1e4;
+  World<D> w = periodic_world<D>(size, linear_material(kn, 0.5 * kn, 0.5, 0.7, kRho));
+  std::mt19937_64 rng(9);
+  fill_lattice(w, Vec<D>(Vec<D>::Zero()), size, 2.1 * kR, 0.8 * kR, kR, 0.1 * kR, 1.0, kRho, 0,
+               rng);
+  w.cell.vel_grad(0, 1) = 20.0;
+  w.dt = 1e-6;
+  w.measure_this_step = true;
+  double worst = 0.0;
+  std::size_t imaged_contacts = 0;
+  for (int s = 0; s < 2000; ++s) {
+    step(w);
+    const double scale = w.stats.sum_force * 2.0 * kR;
+    if (scale > 0.0)
+      worst =
+          std::max(worst, (w.cell_fabric - w.stats.fabric_stress).cwiseAbs().maxCoeff() / scale);
+    for (std::size_t i = 0; i < w.particles.size(); ++i)
+      for (std::uint32_t k = w.nlist.start[i]; k < w.nlist.start[i + 1]; ++k)
+        imaged_contacts += !w.nlist.image[k].home() &&
+                           w.branch(i, w.nlist.other[k], k).norm() <
+                               w.particles.radius[i] + w.particles.radius[w.nlist.other[k]];
+  }
+  report(std::to_string(D) + "D cell fabric: difference from the sum over contacts", worst);
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_GT(imaged_contacts, 100u);
 }
 
 TYPED_TEST(PeriodicCellTest, SimpleShearCarriesGrainsOnTheImposedProfile) {
