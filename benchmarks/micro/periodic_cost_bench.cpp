@@ -2,7 +2,8 @@
 // with their lattice neighbours, random velocities that make the neighbour list rebuild
 // every few tens of steps) stepped in a box of plane walls and in a periodic cell of the
 // lattice's period, where the grains at one face touch the images of those at the other.
-// Arguments: grains, periodic (0: walls, 1: cell). One thread.
+// Arguments: grains, periodic (0: walls, 1: cell), shuffled (1: the grains start in random
+// memory order, as a generated sample; the first list build renumbers them). One thread.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
