@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "base/error.hpp"
+#include "base/parallel.hpp"
 #include "clumps/clump_dynamics.hpp"
 
 namespace geodem {
@@ -134,12 +135,8 @@ void list_periodic_pairs(World<D>& world) {
 
   const bool clumps = !P.clump.empty();
   const int zr = D == 3 ? 1 : 0;
-  static thread_local std::vector<std::pair<std::uint32_t, CellImage>> row;
-  L.start.assign(n + 1, 0);
-  L.other.clear();
-  L.image.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    row.clear();
+  // Calls pair(j, image) for each grain j > i within reach of grain i, in bin order.
+  auto scan = [&](std::size_t i, auto&& pair) {
     const Vec xi = P.pos[i];
     const double ri = P.radius[i] + L.skin;
     const std::uint32_t ci = clumps ? P.clump[i] : kNoClump;
@@ -166,20 +163,62 @@ void list_periodic_pairs(World<D>& world) {
             if (ci != kNoClump && P.clump[j] == ci) continue;  // members of one clump
             // The bins hold the grains' images inside the cell: from grain i's own position,
             // grain j is seen through the bins' image plus i's and less j's offset.
-            CellImage pair = image;
+            CellImage seen = image;
             for (int k = 0; k < D; ++k)
-              pair.m[k] = static_cast<std::int8_t>(image.m[k] + outside[i].m[k] - outside[j].m[k]);
+              seen.m[k] = static_cast<std::int8_t>(image.m[k] + outside[i].m[k] - outside[j].m[k]);
             const double r = ri + P.radius[j];
-            if ((P.pos[j] + cell.shift(pair) - xi).squaredNorm() < r * r) row.emplace_back(j, pair);
+            if ((P.pos[j] + cell.shift(seen) - xi).squaredNorm() < r * r) pair(j, seen);
           }
         }
-    std::sort(row.begin(), row.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& [j, image] : row) {
-      L.other.push_back(j);
-      L.image.push_back(image);
+  };
+  // A row sorted by partner (a partner has one image within reach: the cell is at least three
+  // reaches across), the image moving with it.
+  auto sort_row = [&L](std::size_t b, std::size_t e) {
+    for (std::size_t x = b + 1; x < e; ++x)
+      for (std::size_t y = x; y > b && L.other[y - 1] > L.other[y]; --y) {
+        std::swap(L.other[y - 1], L.other[y]);
+        std::swap(L.image[y - 1], L.image[y]);
+      }
+  };
+  L.start.assign(n + 1, 0);
+  L.other.clear();
+  L.image.clear();
+  const bool par = world.threads > 1 && n >= kParallelMin;
+  if (!par) {
+    // One thread: a single pass appending rows gives the same rows at half the cost.
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t row_begin = L.other.size();
+      scan(i, [&](std::uint32_t j, const CellImage& m) {
+        L.other.push_back(j);
+        L.image.push_back(m);
+      });
+      sort_row(row_begin, L.other.size());
+      L.start[i + 1] = static_cast<std::uint32_t>(L.other.size());
     }
-    L.start[i + 1] = static_cast<std::uint32_t>(L.other.size());
+    return;
+  }
+  // Several threads: count every row's pairs, then fill each row at its offset; the rows
+  // are the same whatever the threads.
+  const auto rows = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for num_threads(world.threads) schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < rows; ++ii) {
+    std::uint32_t count = 0;
+    scan(static_cast<std::size_t>(ii), [&count](std::uint32_t, const CellImage&) { ++count; });
+    L.start[static_cast<std::size_t>(ii) + 1] = count;
+  }
+  for (std::size_t i = 0; i < n; ++i) L.start[i + 1] += L.start[i];
+  L.other.resize(L.start[n]);
+  L.image.resize(L.start[n]);
+#pragma omp parallel for num_threads(world.threads) schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < rows; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t k = L.start[i];
+    scan(i, [&](std::uint32_t j, const CellImage& m) {
+      L.other[k] = j;
+      L.image[k] = m;
+      ++k;
+    });
+    sort_row(L.start[i], k);
   }
 }
 

@@ -4,10 +4,12 @@
 // starts overlapping so that grains move and the list is rebuilt and renumbered often,
 // its floor slides, the stress is measured along the way, and the automatic time step
 // is updated every 10 steps. One variant carries rolling springs and bonds (the force
-// stage's other instantiation).
+// stage's other instantiation). A sheared periodic cell of colliding grains takes the
+// cell's path: its parallel search, renumbering in the cell, and the cell's sums.
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <random>
 
 #include "base/parallel.hpp"
 #include "pressed_packing.hpp"
@@ -79,6 +81,51 @@ TYPED_TEST(ThreadDeterminism, OneTwoAndThreeThreadsGiveTheSameBits) {
       EXPECT_GT(one.broken_bonds, 0u);
     }
     for (int threads : {2, 3}) expect_identical(one, run<D>(extras, threads), threads);
+  }
+}
+
+template <int D>
+World<D> run_periodic(int threads) {
+  const double r = 1e-3, spacing = 2.1e-3, kn = D == 2 ? 1e6 : 1e4;
+  const int side = D == 2 ? 100 : 22;
+  const Vec<D> size = Vec<D>::Constant(side * spacing);
+  World<D> w;
+  add_material(w, linear_material(kn, 0.5 * kn, 0.5, 0.7, 2600.0));
+  w.resolve_pair_laws();
+  w.cell.periodic = true;
+  w.cell.h = size.asDiagonal();
+  w.cell.vel_grad(0, 1) = 20.0;
+  w.sort_interval = 2;
+  w.threads = threads;
+  std::mt19937_64 rng(5);
+  fill_lattice(w, Vec<D>(Vec<D>::Zero()), size, spacing, 0.8 * r, r, 0.04 * r, 2.0, 2600.0, 0, rng);
+  w.dt = 1e-6;
+  for (int k = 0; k < 300; ++k) {
+    w.measure_this_step = k % 25 == 0;
+    step(w);
+  }
+  return w;
+}
+
+TYPED_TEST(ThreadDeterminism, PeriodicCellGivesTheSameBitsOnOneTwoAndThreeThreads) {
+  constexpr int D = TypeParam::value;
+  if (!built_with_openmp()) GTEST_SKIP() << "built without OpenMP";
+  const World<D> one = run_periodic<D>(1);
+  ASSERT_GT(one.particles.size(), 2 * kParallelMin);
+  EXPECT_GE(one.nlist.builds, 3u);  // renumbered in the cell at builds 0 and 2
+  EXPECT_GT(one.stats.contacts, 0u);
+  for (int threads : {2, 3}) {
+    SCOPED_TRACE(::testing::Message() << threads << " threads against 1");
+    const World<D> other = run_periodic<D>(threads);
+    EXPECT_TRUE(same_bits(one.particles.pos, other.particles.pos));
+    EXPECT_TRUE(same_bits(one.particles.vel, other.particles.vel));
+    EXPECT_TRUE(same_bits(one.particles.id, other.particles.id));
+    EXPECT_TRUE(same_bits(one.nlist.other, other.nlist.other));
+    EXPECT_TRUE(same_bits(one.nlist.image, other.nlist.image));
+    EXPECT_TRUE(same_bits(one.nlist.spring, other.nlist.spring));
+    EXPECT_TRUE(one.cell.h == other.cell.h);
+    EXPECT_TRUE(one.cell_fabric == other.cell_fabric);
+    EXPECT_TRUE(one.cell_stiffness == other.cell_stiffness);
   }
 }
 
