@@ -144,6 +144,11 @@ void write_walls_vtp(const std::string& path, const World<D>& world, double half
     if (w.kind == WallKind::kSegment) {
       point(w.point);
       point(w.end);
+    } else if (w.kind == WallKind::kRectangle) {
+      point(w.point);
+      point(w.end);
+      point(w.end + w.across);
+      point(w.point + w.across);
     } else {
       const Vec c = centre - (centre - w.point).dot(w.normal) * w.normal;
       if constexpr (D == 2) {

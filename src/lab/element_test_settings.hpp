@@ -18,7 +18,7 @@ enum class LabKind : std::uint8_t {
   kOedometer,       // axial loading and unloading by steps, lateral strain zero
   kSimpleShear,     // periodic cell sheared at constant normal stress or constant volume
   kCyclicTriaxial,  // strain-controlled cycles of axial strain at constant confining stress
-  kDirectShear      // 2D shear box: upper frame slid at constant speed under a normal stress
+  kDirectShear      // shear box: upper frame slid at constant speed under a normal stress
 };
 
 const char* lab_kind_name(LabKind k);

@@ -7,7 +7,7 @@
 //   others fixed;
 // - cyclic_triaxial: the axial strain cycled between +A and -A around the consolidated
 //   state, the lateral axes at the confining stress, `cycles` loops per amplitude;
-// - direct_shear (2D): the box split at mid-height (lab/direct_shear_box.hpp), its upper
+// - direct_shear: the box split at mid-height (lab/direct_shear_box.hpp), its upper
 //   frame slid at shear_velocity, the plate held at the normal stress.
 // The functions take the lab runner; its members: w, box, s, servos, element, total_steps,
 // history, progress, vtk, run_until, after_step, porosity, sigma3.
@@ -61,14 +61,12 @@ void install_element_drives(Lab& lab) {
         d[D - 1].rate = (e.turn % 2 == 0 ? 1.0 : -1.0) * e.rate;
       break;
     case LabKind::kDirectShear:
-      if constexpr (D == 2) {
-        // The lips reach a tenth of the box length past the largest displacement.
-        if (!shear_box_split(lab.w))
-          split_shear_box(lab.w, lab.box, e.split,
-                          p.max_displacement + 0.1 * lab.box.size(lab.w).x(), p.frame_gap);
-        drive_upper_frame(lab.w, shear_frames(lab.box), p.shear_velocity);
-        lab.w.controllers = {lab.servos[0]};
-      }
+      // The lips reach a tenth of the box length past the largest displacement.
+      if (!shear_box_split(lab.w))
+        split_shear_box(lab.w, lab.box, e.split, p.max_displacement + 0.1 * lab.box.size(lab.w).x(),
+                        p.frame_gap);
+      drive_upper_frame(lab.w, shear_frames(lab.box), p.shear_velocity);
+      lab.w.controllers = {lab.servos[0]};
       return;
     case LabKind::kTriaxial:
       break;
@@ -231,43 +229,46 @@ double frame_displacement(const Lab& lab) {
 // Grains whose centres lie outside both frames (the lips keep them in: 0).
 template <class Lab>
 std::size_t grains_outside_shear_box(const Lab& lab) {
+  constexpr int v = Lab::kDim - 1;
   const auto& P = lab.w.particles;
-  const double u = frame_displacement(lab), length = lab.box.size(lab.w).x();
-  const double top = lab.w.walls[lab.box.hi[1]].point.y(), split = lab.element.split;
+  const auto size = lab.box.size(lab.w);
+  const double u = frame_displacement(lab), length = size.x(), width = size[Lab::kDim == 3];
+  const double top = lab.w.walls[lab.box.hi[v]].point[v], split = lab.element.split;
   std::size_t out = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
-    const double x = P.pos[i].x(), y = P.pos[i].y(), shift = y > split ? u : 0.0;
-    if (x < shift || x > length + shift || y < 0.0 || y > top) ++out;
+    const double x = P.pos[i].x(), z = P.pos[i][v], shift = z > split ? u : 0.0;
+    const bool off_width = Lab::kDim == 3 && (P.pos[i][1] < 0.0 || P.pos[i][1] > width);
+    if (x < shift || x > length + shift || z < 0.0 || z > top || off_width) ++out;
   }
   return out;
 }
 
 template <class Lab>
 void direct_shear_row(Lab& lab) {
-  if constexpr (Lab::kDim == 2) {
-    auto& e = lab.element;
-    const double u = frame_displacement(lab), length = lab.box.size(lab.w).x();
-    // The stresses on the split plane's shrinking area (length - u); the plate's over its own.
-    const double tau = shear_box_force(lab.w, lab.box, shear_frames(lab.box)) / (length - u);
-    const double sn = lab.w.walls[lab.box.hi[1]].normal_stress();
-    const double rise = lab.w.walls[lab.box.hi[1]].point.y() - e.plate0;
-    const double void_r = void_ratio(lab);
-    lab.history.row({static_cast<double>(lab.test), static_cast<double>(lab.w.step), lab.w.time, u,
-                     tau, sn, tau / sn, rise, void_r, coordination_number(lab.w),
-                     unbalanced_force_ratio(lab.w)});
-    add_shear_point(lab, "direct shear ", u, lab.s.element.max_displacement, tau, sn, -rise,
-                    std::atan(tau / sn) * 180.0 / std::numbers::pi, void_r);
-  }
+  constexpr int v = Lab::kDim - 1;
+  auto& e = lab.element;
+  const auto size = lab.box.size(lab.w);
+  const double u = frame_displacement(lab);
+  // The stresses on the split plane's shrinking area (length - u, times the width in 3D); the
+  // plate's over its own.
+  const double area = (size.x() - u) * (Lab::kDim == 3 ? size[1] : 1.0);
+  const double tau = shear_box_force(lab.w, lab.box, shear_frames(lab.box)) / area;
+  const double sn = lab.w.walls[lab.box.hi[v]].normal_stress();
+  const double rise = lab.w.walls[lab.box.hi[v]].point[v] - e.plate0;
+  const double void_r = void_ratio(lab);
+  lab.history.row({static_cast<double>(lab.test), static_cast<double>(lab.w.step), lab.w.time, u,
+                   tau, sn, tau / sn, rise, void_r, coordination_number(lab.w),
+                   unbalanced_force_ratio(lab.w)});
+  add_shear_point(lab, "direct shear ", u, lab.s.element.max_displacement, tau, sn, -rise,
+                  std::atan(tau / sn) * 180.0 / std::numbers::pi, void_r);
 }
 
 template <class Lab>
 void run_direct_shear(Lab& lab) {
-  if constexpr (Lab::kDim == 2) {
-    shear_to(
-        lab, [&] { return frame_displacement(lab); }, lab.s.element.max_displacement,
-        lab.s.element.shear_velocity, [&] { direct_shear_row(lab); });
-    drive_upper_frame(lab.w, shear_frames(lab.box), 0.0);
-  }
+  shear_to(
+      lab, [&] { return frame_displacement(lab); }, lab.s.element.max_displacement,
+      lab.s.element.shear_velocity, [&] { direct_shear_row(lab); });
+  drive_upper_frame(lab.w, shear_frames(lab.box), 0.0);
 }
 
 template <class Lab>
@@ -313,7 +314,7 @@ nlohmann::json element_test_results(const Lab& lab) {
       break;
     case LabKind::kDirectShear:
       r = direct_shear_results(e.curve);
-      if constexpr (Lab::kDim == 2) r["grains_outside_box"] = grains_outside_shear_box(lab);
+      r["grains_outside_box"] = grains_outside_shear_box(lab);
       break;
     case LabKind::kTriaxial:
       break;

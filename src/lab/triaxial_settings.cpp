@@ -150,8 +150,6 @@ TriaxialSettings read_triaxial(const toml::table& root, const std::string& file)
       sample->fail("boundary", "simple_shear runs in a periodic cell: boundary = \"periodic\"");
     if (s.kind == LabKind::kDirectShear && s.periodic)
       sample->fail("boundary", "direct_shear runs in a box of walls: boundary = \"walls\"");
-    if (s.kind == LabKind::kDirectShear && s.dimension != 2)
-      r.fail("dimension", "direct_shear is a 2D test (its box has segment walls): dimension = 2");
   } else {
     read_shear(r, s);
   }

@@ -1,9 +1,10 @@
-// Rigid boundaries: infinite planes (any orientation, one-sided) and, in 2D,
-// segments (two-sided, chained into polylines). Walls move with a prescribed
-// velocity or under a controller; the force the grains exert on each wall is
-// summed every step.
+// Rigid boundaries: infinite planes (any orientation, one-sided), in 2D segments
+// (two-sided, chained into polylines) and in 3D rectangles (two-sided: a segment swept
+// along a second edge, the frames of a shear box). Walls move with a prescribed velocity
+// or under a controller; the force the grains exert on each wall is summed every step.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -12,7 +13,7 @@
 
 namespace geodem {
 
-enum class WallKind : std::uint8_t { kPlane, kSegment };
+enum class WallKind : std::uint8_t { kPlane, kSegment, kRectangle };
 
 template <int D>
 struct Wall {
@@ -21,11 +22,13 @@ struct Wall {
   WallKind kind = WallKind::kPlane;
   Vec point = Vec::Zero();   // plane: a point on it; segment: first end
   Vec normal = Vec::Zero();  // plane: unit normal pointing into the grains' side
-  Vec end = Vec::Zero();     // segment: second end
+  Vec end = Vec::Zero();     // segment: second end; rectangle: the first edge's other end
+  Vec across = Vec::Zero();  // rectangle: its second edge (from point, normal to the first)
   Vec velocity = Vec::Zero();
   std::uint16_t material = 0;
   // Segments of one polyline share vertices; a grain touching a shared vertex
-  // is counted by one segment only (the one that starts there).
+  // is counted by one segment only (the one that starts there). A rectangle that does not
+  // own its end edge (the side through `end`) leaves it to the rectangle that meets it there.
   bool owns_end_vertex = true;
   double area = 0.0;  // for the stress on the wall (m^2 in 3D, m in 2D); 0: unknown
 
@@ -40,8 +43,9 @@ struct Wall {
 };
 
 // Closest point of a wall to x, with the gap (distance from x to the wall,
-// signed for planes). Returns false when the segment's vertex-owner rule excludes
-// it (only when `apply_owner_rule`: the force loop applies it, the list does not).
+// signed for planes; a rectangle's point is clamped to both of its edges). Returns false when the
+// segment's vertex-owner rule excludes it (only when `apply_owner_rule`: the force loop applies it,
+// the list does not).
 template <int D>
 inline bool wall_closest(const Wall<D>& w, const typename Dim<D>::Vec& x,
                          typename Dim<D>::Vec& closest, bool apply_owner_rule = true) {
@@ -58,13 +62,18 @@ inline bool wall_closest(const Wall<D>& w, const typename Dim<D>::Vec& x,
   }
   if (t < 0.0) t = 0.0;
   closest = w.point + t * seg;
+  if (w.kind == WallKind::kRectangle) {
+    const double wide2 = w.across.squaredNorm();
+    const double u = wide2 > 0.0 ? (x - w.point).dot(w.across) / wide2 : 0.0;
+    closest += std::clamp(u, 0.0, 1.0) * w.across;
+  }
   return true;
 }
 
 // A sphere (centre x, radius r) against a wall as the force stage meets it: the unit normal
 // n from the centre to the wall and the overlap delta > 0; false when they do not touch, when
 // the vertex-owner rule gives the contact to the next segment, or when the centre lies on a
-// segment (no normal).
+// segment or rectangle (no normal).
 template <int D>
 inline bool wall_overlap(const Wall<D>& w, const typename Dim<D>::Vec& x, double r,
                          typename Dim<D>::Vec& n, double& delta) {

@@ -64,7 +64,7 @@ void visit(Archive& a, World<D>& w, bool adopt_walls = false) {
   count_of(a, w.walls, "walls", adopt_walls);
   for (auto& wall : w.walls) {
     name_of(a, wall.name, "wall", adopt_walls);
-    a(wall.kind), a(wall.point), a(wall.normal), a(wall.end), a(wall.velocity);
+    a(wall.kind), a(wall.point), a(wall.normal), a(wall.end), a(wall.across), a(wall.velocity);
     a(wall.material), a(wall.owns_end_vertex), a(wall.area), a(wall.force), a(wall.stiffness);
     a(wall.displacement);
   }
