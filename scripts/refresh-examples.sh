@@ -55,6 +55,8 @@ if ((all)); then
   cp "$OUT/triaxial3d_boundaries/boundaries.png" "$OUT/triaxial3d_boundaries/boundaries.md" \
     examples/triaxial3d/expected/
   # The element tests of one soil over 5 seeds (about 4 minutes), seed 1's plots.
+  /usr/bin/python3 examples/triaxial3d/direct_shear_seeds.py "$OUT/triaxial3d_direct_shear"
+  cp "$OUT/triaxial3d_direct_shear"/direct_shear{.md,_seeds.png} examples/triaxial3d/expected/
   /usr/bin/python3 examples/lab2d/consistency.py "$OUT/lab2d" --seeds 5
   cp "$OUT/lab2d"/consistency.{md,json} "$OUT/lab2d"/{modulus_damping,compression}.png \
     examples/lab2d/expected/

@@ -22,10 +22,15 @@ REUSE = False  # --reuse: runs already in OUT are read, not run again
 CASES = {"walls": HERE / "scenario.toml", "periodic": HERE / "periodic.toml"}
 
 
-def run(geodem, scenario, out, seed):
-    if not REUSE or not (out / "summary.json").exists():
-        subprocess.run([geodem, "run", str(scenario), "--out", str(out), "--overwrite", "--quiet",
-                        "--threads", "1", "--set", f"seed={seed}"], check=True)
+def run(geodem, scenario, out, seed, reuse=None, sets=()):
+    """Runs `scenario` with `seed` (and `--set` each of `sets`) into `out` on one thread, unless
+    `reuse` (by default --reuse) and it ran already; returns its summary and history rows."""
+    if not (REUSE if reuse is None else reuse) or not (out / "summary.json").exists():
+        cmd = [geodem, "run", str(scenario), "--out", str(out), "--overwrite", "--quiet",
+               "--threads", "1", "--set", f"seed={seed}"]
+        for s in sets:
+            cmd += ["--set", s]
+        subprocess.run(cmd, check=True)
     summary = json.loads((out / "summary.json").read_text())
     with open(out / "history.csv") as f:
         rows = list(csv.DictReader(f))
@@ -36,13 +41,18 @@ def mean_std(values):
     return statistics.mean(values), statistics.stdev(values) if len(values) > 1 else 0.0
 
 
-def main():
+def seed_arguments():
+    """The arguments of the seed scripts of this folder: OUT, --seeds, --geodem, --reuse."""
     ap = argparse.ArgumentParser()
     ap.add_argument("out")
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--geodem", default="build/geodem")
     ap.add_argument("--reuse", action="store_true", help="read the runs already in OUT")
-    a = ap.parse_args()
+    return ap
+
+
+def main():
+    a = seed_arguments().parse_args()
     global REUSE
     REUSE = a.reuse
     out = Path(a.out)
