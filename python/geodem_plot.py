@@ -1,6 +1,10 @@
 #!/usr/bin/env python3
 """Make the PNG plots of a finished geodem run: geodem_plot.py OUTPUT_DIR.
 
+geodem_plot.py --wait OUTPUT_DIR: what a run starts as it begins. It loads its libraries while
+the run computes, then reads a line from its standard input: "go" draws the plots of the
+finished run, anything else (the end of the input when the run failed) leaves without drawing.
+
 Reads summary.json (for the kind of run) and history.csv (the studies, kinds series,
 rate_study and calibrate, have none: their summary and CSV tables instead), writes
 PNG files named after what they show into the same folder. Uses numpy and
@@ -9,8 +13,14 @@ matplotlib only.
 import csv
 import json
 import math
+import signal
 import sys
 from pathlib import Path
+
+if __name__ == "__main__" and len(sys.argv) > 1 and sys.argv[1] == "--wait":
+    # Ctrl-C reaches the run's whole process group: the run ends on its own terms and closes
+    # our input, which ends this process without a traceback.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 import matplotlib
 import numpy as np
@@ -873,6 +883,10 @@ PLOTTERS = {"scene": plot_scene, "triaxial": plot_triaxial, "pullout": plot_pull
 
 
 def main(argv):
+    if len(argv) == 3 and argv[1] == "--wait":
+        if sys.stdin.readline().strip() != "go":
+            return 0
+        argv = [argv[0], argv[2]]
     if len(argv) != 2:
         print(__doc__, file=sys.stderr)
         return 2

@@ -14,6 +14,7 @@
 #include "base/parallel.hpp"
 #include "check_command.hpp"
 #include "io/interrupt.hpp"
+#include "io/plot_process.hpp"
 #include "io/run_output.hpp"
 #include "kinds/scenario_kind.hpp"
 #include "study/study_comm.hpp"

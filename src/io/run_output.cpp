@@ -7,9 +7,6 @@
 
 #include "io/output_files.hpp"
 
-#ifndef GEODEM_PYTHON_DIR
-#define GEODEM_PYTHON_DIR "python"
-#endif
 #ifndef GEODEM_VERSION
 #define GEODEM_VERSION "0.0.0"
 #endif
@@ -162,29 +159,6 @@ void VtkSeries<D>::restore(StateReader& in) {
   // The index as the run had it: none before its first frame (a run without frames, such
   // as a study's, leaves its vtk/ folder empty).
   if (count_ > 0) pvd_.write();
-}
-
-bool make_plots(const std::string& dir, bool quiet) {
-  const char* env = std::getenv("GEODEM_PYTHON");
-  std::string python =
-      env ? env : (std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
-  std::string script = std::string(GEODEM_PYTHON_DIR) + "/geodem_plot.py";
-  if (!std::filesystem::exists(script)) {
-    if (!quiet)
-      std::fprintf(stderr, "warning: plotting script %s not found; no PNG plots\n", script.c_str());
-    return false;
-  }
-  const std::string cmd = "\"" + python + "\" \"" + script + "\" \"" + dir + "\"";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) {
-    if (!quiet)
-      std::fprintf(stderr,
-                   "warning: plotting failed (is python3-matplotlib installed?); the CSV, JSON "
-                   "and VTK outputs are complete; run 'geodem plot %s' later\n",
-                   dir.c_str());
-    return false;
-  }
-  return true;
 }
 
 template class VtkSeries<2>;

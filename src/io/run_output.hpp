@@ -74,10 +74,6 @@ class VtkSeries {
   const std::vector<typename Dim<D>::Vec>* reference_ = nullptr;
 };
 
-// Runs the plotting script on a finished run's folder; returns false (with a
-// warning on stderr) when Python or matplotlib is missing.
-bool make_plots(const std::string& dir, bool quiet);
-
 // The version string.
 const char* version();
 

@@ -36,8 +36,9 @@ KindRun run_triaxial_kind(const LoadedScenario& l, const std::string& file, cons
                           bool overwrite) {
   const TriaxialSettings t = read_triaxial(l.root, file);
   claim_output(opt, overwrite);
+  PlotProcess plots = t.plots ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
   run_triaxial(t, opt);
-  if (t.plots) make_plots(opt.out_dir, opt.quiet);
+  plots.finish();
   return {};
 }
 
@@ -64,9 +65,11 @@ KindRun run_pullout_kind(const LoadedScenario& l, const std::string& file, const
   char line[256] = "";
   if (p.seeds > 1 || !p.radius_factors.empty()) {
     claim_output(opt, overwrite);  // a resumed series keeps its finished runs
+    PlotProcess plots =
+        p.plots && comm::rank() == 0 ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
     const auto summary = run_pullout_series(l.root, p, opt);
     if (comm::rank() != 0) return {};
-    if (p.plots) make_plots(opt.out_dir, opt.quiet);
+    plots.finish();
     const auto& t = summary["results"]["T_max"];
     if (t.is_object())
       std::snprintf(line, sizeof line, "T_max %.4g N/m (mean of %d seeds, cv %.2g)",
@@ -74,8 +77,9 @@ KindRun run_pullout_kind(const LoadedScenario& l, const std::string& file, const
     return {summary["results"]["failed_runs"].empty() ? 0 : 1, line};
   }
   claim_output(opt, overwrite);
+  PlotProcess plots = p.plots ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
   const auto summary = run_pullout(p, opt);
-  if (p.plots) make_plots(opt.out_dir, opt.quiet);
+  plots.finish();
   const auto& r = summary["results"];
   std::snprintf(line, sizeof line,
                 "T_max %.4g N/m, mechanism %s (design: slippage %.4g N/m, soil mass %.4g N/m)",
@@ -96,8 +100,9 @@ KindRun run_interface_shear_kind(const LoadedScenario& l, const std::string& fil
                                  const RunOptions& opt, bool overwrite) {
   const InterfaceShearSettings p = read_interface_shear(l.root, file);
   claim_output(opt, overwrite);
+  PlotProcess plots = p.plots ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
   const auto summary = run_interface_shear(p, opt);
-  if (p.plots) make_plots(opt.out_dir, opt.quiet);
+  plots.finish();
   char line[256];
   std::snprintf(line, sizeof line, "interface friction %.4g deg (peak), %.4g deg (residual)",
                 summary["results"]["interface_friction_peak_deg"].get<double>(),

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "clumps/grain_mix.hpp"
+#include "io/plot_process.hpp"
 #include "io/run_output.hpp"
 #include "io/scenario_file.hpp"
 

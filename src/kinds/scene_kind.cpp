@@ -38,8 +38,9 @@ KindRun run(const LoadedScenario& l, const std::string& file, const RunOptions& 
             bool overwrite) {
   const SceneSettings s = read_scene(l.root, file);
   claim_output(opt, overwrite);
+  PlotProcess plots = s.output.plots ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
   const auto summary = run_scene(s, opt);
-  if (s.output.plots) make_plots(opt.out_dir, opt.quiet);
+  plots.finish();
   char line[256];
   std::snprintf(line, sizeof line, "%s steps, %.3g s simulated",
                 summary["results"]["steps"].dump().c_str(),

@@ -2,6 +2,7 @@
 // go to `--threads` workers on each MPI rank; rank 0 reports.
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 
 #include "io/memory_budget.hpp"
 #include "io/toml_reader.hpp"
@@ -18,11 +19,16 @@ bool shared(const toml::table&) {
   return true;
 }
 
+// A study's plotting child (rank 0 only), started while the study runs.
+PlotProcess plots_for(const RunOptions& opt, bool plots) {
+  return plots && comm::rank() == 0 ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
+}
+
 // After a study: its plots, and the runs that did not complete (exit 3 when one was unstable,
 // else 1).
-KindRun finish(const nlohmann::json& summary, bool plots, const RunOptions& opt) {
+KindRun finish(const nlohmann::json& summary, PlotProcess plots) {
   if (comm::rank() != 0) return {};
-  if (plots) make_plots(opt.out_dir, opt.quiet);
+  plots.finish();
   const auto& failed = summary["results"]["failed_runs"];
   if (failed.empty()) return {};
   std::fprintf(stderr, "warning: %zu run(s) did not complete (results.failed_runs):\n",
@@ -50,7 +56,8 @@ KindRun run_series_kind(const LoadedScenario& l, const std::string& file, const 
                         bool overwrite) {
   const auto s = read_series(l.root, file);
   claim_output(opt, overwrite);
-  return finish(run_series(s, opt), s.study.plots, opt);
+  auto plots = plots_for(opt, s.study.plots);
+  return finish(run_series(s, opt), std::move(plots));
 }
 
 std::string check_rate_study(const toml::table& root, const std::string& file, int, bool) {
@@ -62,7 +69,8 @@ KindRun run_rate_study_kind(const LoadedScenario& l, const std::string& file, co
                             bool overwrite) {
   const auto s = read_rate_study(l.root, file);
   claim_output(opt, overwrite);
-  return finish(run_rate_study(s, opt), s.study.plots, opt);
+  auto plots = plots_for(opt, s.study.plots);
+  return finish(run_rate_study(s, opt), std::move(plots));
 }
 
 // A calibration of the soil-sheet interface reads its material from [soil], as the interface
@@ -82,11 +90,13 @@ KindRun run_calibrate_kind(const LoadedScenario& l, const std::string& file, con
   if (is_interface_calibration(l.root)) {
     const auto s = read_interface_calibrate(l.root, file);
     claim_output(opt, overwrite);
-    return finish(run_interface_calibrate(s, opt), s.plots, opt);
+    auto plots = plots_for(opt, s.plots);
+    return finish(run_interface_calibrate(s, opt), std::move(plots));
   }
   const auto s = read_calibrate(l.root, file);
   claim_output(opt, overwrite);
-  return finish(run_calibrate(s, opt), s.study.plots, opt);
+  auto plots = plots_for(opt, s.study.plots);
+  return finish(run_calibrate(s, opt), std::move(plots));
 }
 
 }  // namespace

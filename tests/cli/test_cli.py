@@ -448,6 +448,45 @@ create = "initial"
         text = SMALL_PULLOUT.format(shape="L", trench="trench_depth = 0.02")  # 10 mm wide
         self.assertBadInput(text, "anchor.trench_width", "narrower than the largest grain")
 
+    def test_plotting_child(self):
+        # Without Python the run still completes, with a warning and no plots.
+        out = self.dir / "nopython"
+        r = subprocess.run([GEODEM, "run", self.write(scene(2)), "--out", str(out)],
+                           capture_output=True, text=True, timeout=300,
+                           env={**os.environ, "GEODEM_PYTHON": str(self.dir / "no_python")})
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("plotting failed", r.stderr)
+        self.assertEqual(json.loads((out / "summary.json").read_text())["status"], "completed")
+        self.assertFalse(list(out.glob("*.png")))
+
+        # A run stopped while its plotting child waits: the child leaves without drawing.
+        out = self.dir / "stopped"
+        p = subprocess.Popen([GEODEM, "run", self.write(scene(2)), "--out", str(out), "--quiet",
+                              "--set", "time.duration=1000"], stderr=subprocess.PIPE, text=True)
+
+        def children():
+            found = []
+            for cmd in Path("/proc").glob("[0-9]*/cmdline"):
+                try:
+                    args = cmd.read_bytes().split(b"\0")
+                except OSError:
+                    continue
+                if b"--wait" in args and str(out).encode() in args:
+                    found.append(cmd.parent.name)
+            return found
+
+        deadline = time.time() + 60
+        while not children() and time.time() < deadline:
+            time.sleep(0.05)
+        self.assertTrue(children(), "the run started no plotting child")
+        time.sleep(0.5)
+        p.send_signal(signal.SIGTERM)
+        err = p.communicate(timeout=120)[1]
+        self.assertEqual(p.returncode, 143, err)
+        self.assertNotIn("Traceback", err)
+        self.assertEqual(children(), [])
+        self.assertFalse(list(out.glob("*.png")))
+
     def test_plot_command(self):
         out = self.dir / "out"
         self.assertEqual(run("run", self.write(scene(2)), "--out", str(out), "--quiet").returncode, 0)
