@@ -1,7 +1,8 @@
 // Cost of clumps against round grains with the same number of member spheres/discs:
 // a dense lattice packing (every grain overlaps its lattice neighbours by 1 %), once
 // as N round grains and once as N/2 rigid pairs (neighbouring lattice sites joined).
-// The whole step is timed; items are member grains, so the rates compare directly.
+// The whole step is timed; items are member grains, so the rates compare directly. The
+// second argument is the thread count.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -14,7 +15,7 @@
 namespace {
 
 template <int D>
-geodem::World<D> packing(std::size_t n_target, bool clumps) {
+geodem::World<D> packing(std::size_t n_target, bool clumps, int threads) {
   using Vec = typename geodem::Dim<D>::Vec;
   geodem::World<D> w;
   geodem::Material m;
@@ -45,20 +46,23 @@ geodem::World<D> packing(std::size_t n_target, bool clumps) {
   w.dt = 1e-6;
   w.local_damping = 0.2;
   w.sort_interval = 1;
+  w.threads = threads;
   geodem::build_neighbour_list(w);
   return w;
 }
 
 template <int D>
 void BM_StepRound(benchmark::State& state) {
-  auto w = packing<D>(static_cast<std::size_t>(state.range(0)), false);
+  auto w =
+      packing<D>(static_cast<std::size_t>(state.range(0)), false, static_cast<int>(state.range(1)));
   for (auto _ : state) geodem::step(w);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
 }
 
 template <int D>
 void BM_StepClumpPairs(benchmark::State& state) {
-  auto w = packing<D>(static_cast<std::size_t>(state.range(0)), true);
+  auto w =
+      packing<D>(static_cast<std::size_t>(state.range(0)), true, static_cast<int>(state.range(1)));
   for (auto _ : state) geodem::step(w);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
 }
@@ -66,24 +70,29 @@ void BM_StepClumpPairs(benchmark::State& state) {
 // The integration stage alone (clumps: members summed, rigid-body step, members placed).
 template <int D>
 void BM_IntegrateRound(benchmark::State& state) {
-  auto w = packing<D>(static_cast<std::size_t>(state.range(0)), false);
+  auto w =
+      packing<D>(static_cast<std::size_t>(state.range(0)), false, static_cast<int>(state.range(1)));
   for (auto _ : state) geodem::integrate(w);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
 }
 
 template <int D>
 void BM_IntegrateClumpPairs(benchmark::State& state) {
-  auto w = packing<D>(static_cast<std::size_t>(state.range(0)), true);
+  auto w =
+      packing<D>(static_cast<std::size_t>(state.range(0)), true, static_cast<int>(state.range(1)));
   for (auto _ : state) geodem::integrate(w);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w.particles.size()));
 }
 
 }  // namespace
 
-BENCHMARK(BM_IntegrateRound<3>)->Arg(20000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_IntegrateClumpPairs<3>)->Arg(20000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_StepRound<2>)->Arg(20000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_StepClumpPairs<2>)->Arg(20000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_StepRound<3>)->Arg(20000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_StepClumpPairs<3>)->Arg(20000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IntegrateRound<3>)->Args({20000, 1})->Args({20000, 2})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IntegrateClumpPairs<3>)
+    ->Args({20000, 1})
+    ->Args({20000, 2})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StepRound<2>)->Args({20000, 1})->Args({20000, 2})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StepClumpPairs<2>)->Args({20000, 1})->Args({20000, 2})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StepRound<3>)->Args({20000, 1})->Args({20000, 2})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StepClumpPairs<3>)->Args({20000, 1})->Args({20000, 2})->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "base/parallel.hpp"
+
 namespace geodem {
 
 namespace {
@@ -114,10 +116,15 @@ double place_members(World<D>& world) {
   using Mat = Eigen::Matrix<double, D, D>;
   auto& P = world.particles;
   const auto& C = world.clumps;
-  double vmax2 = 0.0;
+  double vmax2 = 0.0;  // a maximum: the same in any order
   if (C.size() == 0) return vmax2;
   const Mat* __restrict R = C.rotation.data();
-  for (std::size_t i = 0; i < P.size(); ++i) {
+  const auto n = static_cast<std::ptrdiff_t>(P.size());
+#pragma omp parallel for num_threads(world.threads) schedule(static) \
+    reduction(max                                                    \
+              : vmax2) if (world.threads > 1 && P.size() >= kParallelMin)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
     const std::uint32_t c = P.clump[i];
     if (c == kNoClump) continue;
     const Vec arm = R[c] * P.body_offset[i];
@@ -129,6 +136,35 @@ double place_members(World<D>& world) {
   return vmax2;
 }
 
+namespace {
+
+// Each clump's members in ascending grain order (compressed rows), remade when grains may
+// have been renumbered since.
+template <int D>
+const typename StepScratch<D>::ClumpMembers& clump_members(World<D>& world) {
+  auto& m = world.clump_members;
+  const auto& P = world.particles;
+  const std::size_t nc = world.clumps.size();
+  if (m.builds == world.nlist.builds && m.grains == P.size() && m.clumps == nc) return m;
+  m.start.assign(nc + 1, 0);
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (P.clump[i] != kNoClump) ++m.start[P.clump[i] + 1];
+  for (std::size_t c = 0; c < nc; ++c) m.start[c + 1] += m.start[c];
+  m.grain.resize(m.start[nc]);
+  std::vector<std::uint32_t> fill(m.start.begin(), m.start.end() - 1);
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (P.clump[i] != kNoClump) m.grain[fill[P.clump[i]]++] = static_cast<std::uint32_t>(i);
+  m.builds = world.nlist.builds;
+  m.grains = P.size();
+  m.clumps = nc;
+  return m;
+}
+
+}  // namespace
+
+// Every loop runs clump by clump (or grain by grain), each writing only its own clump or
+// grain; a clump's members are summed in grain order. The results do not depend on the
+// number of threads.
 template <int D>
 double integrate_clumps(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
@@ -136,41 +172,57 @@ double integrate_clumps(World<D>& world) {
   auto& C = world.clumps;
   const std::size_t nc = C.size();
   if (nc == 0) return 0.0;
-  for (std::size_t c = 0; c < nc; ++c) {
-    C.force[c].setZero();
-    C.torque[c] = Dim<D>::zero_rot();
+  const bool par = world.threads > 1 && nc >= kParallelMin / 2;
+  const auto ncs = static_cast<std::ptrdiff_t>(nc);
+  // Resultants about each centre of mass.
+  const auto& members = clump_members(world);
+  const std::uint32_t* mstart = members.start.data();
+  const std::uint32_t* mgrain = members.grain.data();
+#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
+  for (std::ptrdiff_t k = 0; k < ncs; ++k) {
+    const auto c = static_cast<std::size_t>(k);
+    Vec f = Vec::Zero();
+    typename Dim<D>::Rot t = Dim<D>::zero_rot();
+    for (std::uint32_t m = mstart[c]; m < mstart[c + 1]; ++m) {
+      const std::uint32_t i = mgrain[m];
+      const Vec arm = P.pos[i] - C.pos[c];
+      f += P.force[i];
+      t += P.torque[i] + Dim<D>::cross(arm, P.force[i]);
+    }
+    C.force[c] = f;
+    C.torque[c] = t;
   }
-  // Resultants about each centre of mass. When the contact stage measured the fabric
-  // stress with member centres as the grains' centres, the clump's own centre replaces
-  // them: add (X - x_m) (x) F_m for each member m (docs/physics.md, "Clumps").
-  auto& fabric = world.stats.fabric_stress;
-  const bool measure = world.measure_this_step;
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    const std::uint32_t c = P.clump[i];
-    if (c == kNoClump) continue;
-    const Vec arm = P.pos[i] - C.pos[c];
-    C.force[c] += P.force[i];
-    C.torque[c] += P.torque[i] + Dim<D>::cross(arm, P.force[i]);
-    if (measure) fabric -= arm * P.force[i].transpose();
+  // When the contact stage measured the fabric stress with member centres as the grains'
+  // centres, the clump's own centre replaces them: add (X - x_m) (x) F_m for each member m
+  // (docs/physics.md, "Clumps"); one sum, in grain order.
+  if (world.measure_this_step) {
+    auto& fabric = world.stats.fabric_stress;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      const std::uint32_t c = P.clump[i];
+      if (c != kNoClump) fabric -= (P.pos[i] - C.pos[c]) * P.force[i].transpose();
+    }
   }
   const double dt = world.dt, alpha = world.local_damping;
   const Vec g = world.gravity;
   static thread_local std::vector<Vec> body_momentum;  // 3D: angular momentum, body frame
   if constexpr (D == 3) body_momentum.resize(nc);
+  Vec* lb = body_momentum.data();
   const bool any_held = !C.held.empty();
-  for (std::size_t c = 0; c < nc; ++c) {
+#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
+  for (std::ptrdiff_t k = 0; k < ncs; ++k) {
+    const auto c = static_cast<std::size_t>(k);
     if (any_held && C.held[c]) {  // kept still: no kick, no drift, no turn
       C.vel[c].setZero();
       C.angvel[c] = Dim<D>::zero_rot();
       if constexpr (D == 3) {
         C.angmom[c].setZero();
-        body_momentum[c].setZero();
+        lb[c].setZero();
       }
       continue;
     }
     Vec a = C.force[c] * C.inv_mass[c] + g;
     if (alpha > 0.0)
-      for (int k = 0; k < D; ++k) a[k] = damped(a[k], C.vel[c][k] + 0.5 * dt * a[k], alpha);
+      for (int d = 0; d < D; ++d) a[d] = damped(a[d], C.vel[c][d] + 0.5 * dt * a[d], alpha);
     C.vel[c] += a * dt;
     if (world.cell.periodic) {  // the affine field of the periodic cell carries the centre
       C.pos[c] += (C.vel[c] + world.cell.vel_grad * C.pos[c]) * dt;
@@ -203,22 +255,27 @@ double integrate_clumps(World<D>& world) {
       // Kick: world angular momentum; then its body-frame value for the free rotation.
       Vec t = C.torque[c];
       if (alpha > 0.0)
-        for (int k = 0; k < 3; ++k) t[k] = damped(t[k], C.angvel[c][k], alpha);
+        for (int d = 0; d < 3; ++d) t[d] = damped(t[d], C.angvel[c][d], alpha);
       C.angmom[c] += t * dt;
-      body_momentum[c] = C.rotation[c].transpose() * C.angmom[c];
+      lb[c] = C.rotation[c].transpose() * C.angmom[c];
     }
   }
   if constexpr (D == 3) {
     // Free rotations two clumps at a time: each is a long chain of dependent operations,
     // and two independent chains side by side let the processor overlap them.
-    std::size_t c = 0;
-    for (; c + 1 < nc; c += 2)
-      free_rotation_pair(C.orient[c], body_momentum[c], C.inv_inertia[c], C.orient[c + 1],
-                         body_momentum[c + 1], C.inv_inertia[c + 1], dt);
-    if (c < nc) free_rotation(C.orient[c], body_momentum[c], C.inv_inertia[c], dt);
-    for (c = 0; c < nc; ++c) {
+    const auto pairs = static_cast<std::ptrdiff_t>(nc / 2);
+#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
+    for (std::ptrdiff_t k = 0; k < pairs; ++k) {
+      const auto c = 2 * static_cast<std::size_t>(k);
+      free_rotation_pair(C.orient[c], lb[c], C.inv_inertia[c], C.orient[c + 1], lb[c + 1],
+                         C.inv_inertia[c + 1], dt);
+    }
+    if (nc % 2 == 1) free_rotation(C.orient[nc - 1], lb[nc - 1], C.inv_inertia[nc - 1], dt);
+#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
+    for (std::ptrdiff_t k = 0; k < ncs; ++k) {
+      const auto c = static_cast<std::size_t>(k);
       C.rotation[c] = C.orient[c].toRotationMatrix();
-      C.angvel[c] = C.rotation[c] * Vec(body_momentum[c].cwiseProduct(C.inv_inertia[c]));
+      C.angvel[c] = C.rotation[c] * Vec(lb[c].cwiseProduct(C.inv_inertia[c]));
     }
   }
   return place_members(world);

@@ -96,6 +96,16 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
       world.collision_shares.pair.empty() ? nullptr : world.collision_shares.pair.data();
   const CellImage* image = Periodic ? L.image.data() : nullptr;
   const PeriodicCell<D>& cell = world.cell;
+  // Each row runs in two passes over chunks of its pairs: the first measures every listed pair
+  // and keeps those that touch (or are bonded), without a branch on the outcome; the second
+  // computes their forces, in list order. Whether a listed pair touches is hard to predict,
+  // and each wrong guess discarded the long chain of a contact force in flight; in the second
+  // pass consecutive contacts run without a guess between them, so the processor overlaps
+  // their chains. The forces and their order are those of a single pass.
+  constexpr std::uint32_t kChunk = 32;
+  std::uint32_t touching[kChunk];
+  Vec branch[kChunk];  // d = x_j (+ image shift) - x_i of each touching pair
+  double branch2[kChunk];
   for (std::size_t i = first; i < last; ++i) {
     const std::uint32_t b = start[i], e = start[i + 1];
     if (b == e) continue;
@@ -106,95 +116,109 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
     const PairLaw* laws = pair_laws + material[i] * nmat;
     Vec fi = Vec::Zero();
     Rot ti = Dim<D>::zero_rot();
-    for (std::uint32_t k = b; k < e; ++k) {
-      const std::uint32_t j = other[k];
-      Vec d = pos[j] - xi;
-      Vec shift = Vec::Zero();  // periodic cell: the partner's image offset
-      bool imaged = false;
-      if constexpr (Periodic) {
-        imaged = !image[k].home();
-        if (imaged) {
-          shift = cell.shift(image[k]);
-          d += shift;
+    for (std::uint32_t cb = b; cb < e; cb += kChunk) {
+      const std::uint32_t ce = std::min(e, cb + kChunk);
+      std::uint32_t n = 0;
+      for (std::uint32_t k = cb; k < ce; ++k) {
+        const std::uint32_t j = other[k];
+        Vec d = pos[j] - xi;
+        if constexpr (Periodic) {
+          if (!image[k].home()) d += cell.shift(image[k]);
         }
-      }
-      const double rj = radius[j];
-      const double rs = ri + rj;
-      const double dist2 = d.squaredNorm();
-      bool bonded = false;
-      if constexpr (Extras) bonded = extra[k].bonded;
-      if (dist2 >= rs * rs && !bonded) {
-        // Apart: the history ends (written only when there is one, to spare stores).
-        if (spring_norm2<D>(spring[k]) != 0.0) spring[k] = unloaded_spring<D>();
+        const double rs = ri + radius[j];
+        const double dist2 = d.squaredNorm();
+        bool bonded = false;
+        if constexpr (Extras) bonded = extra[k].bonded;
+        const bool apart = (dist2 >= rs * rs) & !bonded;
+        touching[n] = k;
+        branch[n] = d;
+        branch2[n] = dist2;
+        n += apart ? 0u : 1u;
+        // Apart: the history ends (written only when there is one, to spare stores). The
+        // conditions are combined without a jump so that the one branch is nearly always
+        // the same way.
+        if (apart & (spring_norm2<D>(spring[k]) != 0.0)) spring[k] = unloaded_spring<D>();
         if constexpr (Extras) {
-          if (Dim<D>::rot_norm2(extra[k].roll) != 0.0 || extra[k].twist != 0.0)
+          if (apart & ((Dim<D>::rot_norm2(extra[k].roll) != 0.0) | (extra[k].twist != 0.0)))
             extra[k] = ContactExtra<D>{};
         }
-        continue;
       }
-      const double dist = std::sqrt(dist2);
-      const Vec nrm = d * (1.0 / dist);
-      const double delta = rs - dist;
-      if (delta > overlap_limit * std::min(ri, rj)) [[unlikely]]
-        t.note_overlap(i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
-      const double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;  // centre-to-contact lengths
-      // Surface velocities at the contact point.
-      Vec vrel = (vel[j] - Dim<D>::cross(angvel[j], aj * nrm)) - (vi + Dim<D>::cross(wi, ai * nrm));
-      // Velocities are relative to the cell's affine field: the centres' relative velocity
-      // gains L d.
-      if constexpr (Periodic) vrel += cell.vel_grad * d;
-      const PairLaw& law = laws[material[j]];
-      double fn;
-      Vec f;
-      const double inv_msum = share ? (imi + inv_mass[j]) * share[k] : imi + inv_mass[j];
-      if (!bonded) {
-        f = contact_force<D>(law, ri, rj, inv_msum, nrm, delta, vrel, dt, spring[k], fn);
-      } else {
-        bool broken;
-        f = bonded_contact_force<D>(law, ri, rj, inv_msum, nrm, delta, vrel, dt, spring[k], fn,
-                                    broken);
-        if (broken) {
-          extra[k].bonded = 0;
-          ++t.broken_bonds;
-          if (delta <= 0.0) {
-            extra[k] = ContactExtra<D>{};
-            continue;
+      for (std::uint32_t c = 0; c < n; ++c) {
+        const std::uint32_t k = touching[c];
+        const std::uint32_t j = other[k];
+        const Vec& d = branch[c];
+        const double dist2 = branch2[c];
+        const double rj = radius[j];
+        const double rs = ri + rj;
+        bool bonded = false;
+        if constexpr (Extras) bonded = extra[k].bonded;
+        bool imaged = false;
+        if constexpr (Periodic) imaged = !image[k].home();
+        const double dist = std::sqrt(dist2);
+        const Vec nrm = d * (1.0 / dist);
+        const double delta = rs - dist;
+        if (delta > overlap_limit * std::min(ri, rj)) [[unlikely]]
+          t.note_overlap(i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
+        const double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;  // centre-to-contact lengths
+        // Surface velocities at the contact point.
+        Vec vrel =
+            (vel[j] - Dim<D>::cross(angvel[j], aj * nrm)) - (vi + Dim<D>::cross(wi, ai * nrm));
+        // Velocities are relative to the cell's affine field: the centres' relative velocity
+        // gains L d.
+        if constexpr (Periodic) vrel += cell.vel_grad * d;
+        const PairLaw& law = laws[material[j]];
+        double fn;
+        Vec f;
+        const double inv_msum = share ? (imi + inv_mass[j]) * share[k] : imi + inv_mass[j];
+        if (!bonded) {
+          f = contact_force<D>(law, ri, rj, inv_msum, nrm, delta, vrel, dt, spring[k], fn);
+        } else {
+          bool broken;
+          f = bonded_contact_force<D>(law, ri, rj, inv_msum, nrm, delta, vrel, dt, spring[k], fn,
+                                      broken);
+          if (broken) {
+            extra[k].bonded = 0;
+            ++t.broken_bonds;
+            if (delta <= 0.0) {
+              extra[k] = ContactExtra<D>{};
+              continue;
+            }
           }
         }
-      }
-      fi -= f;
-      // Torques: lever arms +ai n (grain i) and -aj n (grain j); the normal part gives none.
-      const Rot tq = Dim<D>::cross(nrm, f);
-      ti -= ai * tq;
-      Rot tj = -(aj * tq);
-      if constexpr (Extras) {
-        if (law.rolling()) {
-          const Rot m = rolling_moment<D>(law, tangential_stiffness(law, ri, rj, delta), ri, rj,
-                                          nrm, Rot(angvel[j] - wi), dt, fn, extra[k]);
-          tj += m;
-          ti -= m;
+        fi -= f;
+        // Torques: lever arms +ai n (grain i) and -aj n (grain j); the normal part gives none.
+        const Rot tq = Dim<D>::cross(nrm, f);
+        ti -= ai * tq;
+        Rot tj = -(aj * tq);
+        if constexpr (Extras) {
+          if (law.rolling()) {
+            const Rot m = rolling_moment<D>(law, tangential_stiffness(law, ri, rj, delta), ri, rj,
+                                            nrm, Rot(angvel[j] - wi), dt, fn, extra[k]);
+            tj += m;
+            ti -= m;
+          }
         }
-      }
-      if (j < last) {  // same slab
-        force[j] += f;
-        torque[j] += tj;
-      } else {
-        crossing.push({f, tj, j});
-      }
-      if constexpr (Periodic) {
-        if constexpr (!kFabricByGrain<D>) {
-          t.cell_fabric += d * f.transpose();
-        } else if (imaged) [[unlikely]] {
-          t.cell_fabric += shift * f.transpose();
+        if (j < last) {  // same slab
+          force[j] += f;
+          torque[j] += tj;
+        } else {
+          crossing.push({f, tj, j});
         }
-        t.cell_stiffness +=
-            normal_stiffness(law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
-      }
-      if constexpr (Measure) {
-        t.stats.fabric_stress += d * f.transpose();
-        t.stats.sum_force += f.norm();
-        ++t.stats.contacts;
-        if (fn > 0.0) t.stats.elastic_energy += normal_energy(law, ri, rj, fn, delta);
+        if constexpr (Periodic) {
+          if constexpr (!kFabricByGrain<D>) {
+            t.cell_fabric += d * f.transpose();
+          } else if (imaged) [[unlikely]] {
+            t.cell_fabric += cell.shift(image[k]) * f.transpose();
+          }
+          t.cell_stiffness +=
+              normal_stiffness(law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
+        }
+        if constexpr (Measure) {
+          t.stats.fabric_stress += d * f.transpose();
+          t.stats.sum_force += f.norm();
+          ++t.stats.contacts;
+          if (fn > 0.0) t.stats.elastic_energy += normal_energy(law, ri, rj, fn, delta);
+        }
       }
     }
     force[i] += fi;

@@ -192,6 +192,14 @@ struct StepScratch {
   CollisionShares collision_shares;
   // Per-slab crossing contributions of the force stage and the automatic time step.
   mutable SlabCrossings<SlabCrossing<D>> slab_crossing;
+  // Each clump's members in grain order, remade after each neighbour-list build (grains are
+  // renumbered there) or when the counts changed: the clump integration sums them clump by
+  // clump, on several threads, in the order of the grains.
+  struct ClumpMembers {
+    std::vector<std::uint32_t> start, grain;
+    std::uint64_t builds = ~std::uint64_t{0};
+    std::size_t grains = 0, clumps = 0;
+  } clump_members;
 };
 
 // Report: what the last step measured, for the runner's records; the runner asks for the

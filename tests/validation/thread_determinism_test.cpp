@@ -5,13 +5,17 @@
 // its floor slides, the stress is measured along the way, and the automatic time step
 // is updated every 10 steps. One variant carries rolling springs and bonds (the force
 // stage's other instantiation). A sheared periodic cell of colliding grains takes the
-// cell's path: its parallel search, renumbering in the cell, and the cell's sums.
+// cell's path: its parallel search, renumbering in the cell, and the cell's sums. A crowd
+// of three-grain clumps thrown together takes the clump integration's parallel loops.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 
 #include "base/parallel.hpp"
+#include "clumps/clump_dynamics.hpp"
+#include "clumps/clump_template.hpp"
 #include "pressed_packing.hpp"
 
 namespace geodem::test {
@@ -126,6 +130,72 @@ TYPED_TEST(ThreadDeterminism, PeriodicCellGivesTheSameBitsOnOneTwoAndThreeThread
     EXPECT_TRUE(one.cell.h == other.cell.h);
     EXPECT_TRUE(one.cell_fabric == other.cell_fabric);
     EXPECT_TRUE(one.cell_stiffness == other.cell_stiffness);
+  }
+}
+
+template <int D>
+World<D> run_clumps(int threads) {
+  World<D> w;
+  const auto mat = add_material(w, modulus_material(1e7, 0.5, 0.5, 1.0));
+  w.resolve_pair_laws();
+  ClumpTemplate<D> shape;
+  // Three members: the sums over a clump's members then depend on their order.
+  shape.centre = {Vec<D>::Zero(), Vec<D>(1.8 * axis<D>(0)),
+                  Vec<D>(0.9 * axis<D>(0) + 1.4 * axis<D>(1))};
+  shape.radius = {1.0, 1.0, 0.8};
+  const auto t = resolve_clump(shape);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  // Clumps on a jittered lattice, created in an order unrelated to the cells (so that the
+  // first build renumbers them), thrown towards the centre so that they collide.
+  const int nx = D == 2 ? 64 : 14, ny = D == 2 ? 48 : 14, nz = D == 2 ? 1 : 14;
+  std::vector<Vec<D>> sites;
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j)
+      for (int l = 0; l < nz; ++l) sites.push_back(vec<D>(i, j, l) * 0.05);
+  std::shuffle(sites.begin(), sites.end(), rng);
+  const Vec<D> centre = vec<D>(0.025 * (nx - 1), 0.025 * (ny - 1), 0.025 * (nz - 1));
+  for (const Vec<D>& site : sites) {
+    Vec<D> x = site;
+    for (int k = 0; k < D; ++k) x[k] += 0.0005 * (2.0 * u(rng) - 1.0);
+    typename Dim<D>::Orient q;
+    if constexpr (D == 2)
+      q = 6.0 * u(rng);
+    else
+      q = random_orientation<3>(u(rng), u(rng), u(rng));
+    add_clump(w, t, x, q, 0.01, 2600.0, mat, Vec<D>(-30.0 * (x - centre)));
+  }
+  w.local_damping = 0.2;
+  w.dt = 1e-5;
+  w.sort_interval = 2;
+  w.threads = threads;
+  for (int k = 0; k < 1000; ++k) {
+    w.measure_this_step = k % 25 == 0;
+    step(w);
+  }
+  return w;
+}
+
+TYPED_TEST(ThreadDeterminism, ClumpsGiveTheSameBitsOnOneTwoAndThreeThreads) {
+  constexpr int D = TypeParam::value;
+  if (!built_with_openmp()) GTEST_SKIP() << "built without OpenMP";
+  const World<D> one = run_clumps<D>(1);
+  ASSERT_GE(one.clumps.size(), kParallelMin / 2);  // the clump loops run in parallel
+  EXPECT_GE(one.nlist.builds, 3u);
+  EXPECT_GT(one.stats.contacts, 100u);  // the clumps collided
+  for (int threads : {2, 3}) {
+    SCOPED_TRACE(::testing::Message() << threads << " threads against 1");
+    const World<D> other = run_clumps<D>(threads);
+    EXPECT_TRUE(same_bits(one.particles.pos, other.particles.pos));
+    EXPECT_TRUE(same_bits(one.particles.vel, other.particles.vel));
+    EXPECT_TRUE(same_bits(one.particles.angvel, other.particles.angvel));
+    EXPECT_TRUE(same_bits(one.particles.id, other.particles.id));
+    EXPECT_TRUE(same_bits(one.clumps.pos, other.clumps.pos));
+    EXPECT_TRUE(same_bits(one.clumps.vel, other.clumps.vel));
+    EXPECT_TRUE(same_bits(one.clumps.angvel, other.clumps.angvel));
+    EXPECT_TRUE(same_bits(one.clumps.orient, other.clumps.orient));
+    EXPECT_TRUE(same_bits(one.nlist.spring, other.nlist.spring));
+    EXPECT_TRUE(one.stats.fabric_stress == other.stats.fabric_stress);
   }
 }
 
