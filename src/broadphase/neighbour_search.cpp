@@ -1,6 +1,7 @@
 #include "broadphase/neighbour_search.hpp"
 
 #include "base/parallel.hpp"
+#include "broadphase/list_history.hpp"
 #include "broadphase/periodic_search.hpp"
 #include "clumps/clump_dynamics.hpp"
 #include "structures/spar_geometry.hpp"
@@ -12,25 +13,6 @@
 namespace geodem {
 
 namespace {
-
-// Copies the history of the pairs of an old row that are also in the new row; the
-// others start from `zero`, and `dropped` sees each old entry that is not carried over.
-// Both rows are sorted by partner index: one linear merge.
-template <typename T, typename Dropped>
-void merge_history(const std::uint32_t* old_other, const T* old_value, std::size_t old_n,
-                   const std::uint32_t* new_other, T* new_value, std::size_t new_n, const T& zero,
-                   Dropped&& dropped) {
-  std::size_t a = 0;
-  for (std::size_t b = 0; b < new_n; ++b) {
-    while (a < old_n && old_other[a] < new_other[b]) dropped(old_value[a++]);
-    if (a < old_n && old_other[a] == new_other[b]) {
-      new_value[b] = old_value[a++];
-    } else {
-      new_value[b] = zero;
-    }
-  }
-  while (a < old_n) dropped(old_value[a++]);
-}
 
 template <int D>
 struct Grid {
@@ -209,12 +191,14 @@ void build_neighbour_list(World<D>& world) {
   NeighbourList<D> old;
   old.swap_rows(L);
   const bool have_old = old.start.size() == n + 1;
+  const std::size_t listed_before = old.other.size();
+  keep_loaded_pairs(old, n, world.threads);
 
   auto reset_rows = [&] {
     L.start.assign(n + 1, 0);
     L.other.clear();
     // Room for about as many pairs as before: appending then never doubles the array.
-    L.other.reserve(old.other.size() + old.other.size() / 8 + 16);
+    L.other.reserve(listed_before + listed_before / 8 + 16);
     L.spring.clear();
     L.wall_start.assign(n + 1, 0);
     L.wall.clear();

@@ -21,11 +21,17 @@ void sync_to_disk(const std::string& path, bool folder) {
 }
 
 void write_file_atomic(const std::string& path, const std::string& content) {
+  write_file_atomic(path, [&content](std::ostream& out) {
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  });
+}
+
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& emit) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot write " + tmp);
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    emit(out);
     out.flush();
     if (!out) throw std::runtime_error("error writing " + tmp);
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,8 @@ namespace geodem {
 
 // Writes `content` to `path` atomically (temporary file + rename).
 void write_file_atomic(const std::string& path, const std::string& content);
+// The same, with the content streamed by `emit` (a large table need not be held in memory).
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& emit);
 
 // fsync of a file or a folder (a folder: the names renamed into it), best effort.
 void sync_to_disk(const std::string& path, bool folder);

@@ -25,20 +25,29 @@ void write_particle_table(const std::string& path, const World<D>& world,
   text += "# columns:";
   for (const auto& c : cols) text += " " + c;
   text += "\n";
-  text.reserve(text.size() + P.size() * (D == 3 ? 200 : 140));
-  char buf[64];
-  auto put = [&](double v, char sep) {
-    std::snprintf(buf, sizeof buf, "%.17g%c", v, sep);
-    text += buf;
-  };
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    text += std::to_string(P.id[i]) + ",";
-    for (int k = 0; k < D; ++k) put(P.pos[i][k], ',');
-    put(P.radius[i], ',');
-    for (int k = 0; k < D; ++k) put(P.vel[i][k], ',');
-    text += std::to_string(P.material[i]) + "\n";
-  }
-  write_file_atomic(path, text);
+  // Streamed in blocks of rows: a table of a million grains (200 MB of text) is never held
+  // in memory, where it would be the run's peak.
+  write_file_atomic(path, [&](std::ostream& out) {
+    out << text;
+    text.clear();
+    char buf[64];
+    auto put = [&](double v, char sep) {
+      std::snprintf(buf, sizeof buf, "%.17g%c", v, sep);
+      text += buf;
+    };
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      text += std::to_string(P.id[i]) + ",";
+      for (int k = 0; k < D; ++k) put(P.pos[i][k], ',');
+      put(P.radius[i], ',');
+      for (int k = 0; k < D; ++k) put(P.vel[i][k], ',');
+      text += std::to_string(P.material[i]) + "\n";
+      if (text.size() >= (1u << 16)) {
+        out << text;
+        text.clear();
+      }
+    }
+    out << text;
+  });
 }
 
 template void write_particle_table<2>(const std::string&, const World<2>&,

@@ -47,13 +47,16 @@ std::vector<double> as3(const std::vector<V>& v) {
   return out;
 }
 
-std::string finish(const std::string& type, const std::string& body, const AppendedData& data) {
-  std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"" + type +
-                  "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n" +
-                  body + "<AppendedData encoding=\"raw\">\n_";
-  s += data.blob();
-  s += "\n</AppendedData>\n</VTKFile>\n";
-  return s;
+// Writes the file: the XML, then the arrays streamed from the blob (no second copy of them).
+void write_vtk(const std::string& path, const std::string& type, const std::string& body,
+               const AppendedData& data) {
+  write_file_atomic(path, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"" << type
+        << "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+        << body << "<AppendedData encoding=\"raw\">\n_";
+    out.write(data.blob().data(), static_cast<std::streamsize>(data.blob().size()));
+    out << "\n</AppendedData>\n</VTKFile>\n";
+  });
 }
 
 // Closes a PolyData piece of lines: its points and connectivity, then writes the file.
@@ -65,7 +68,7 @@ void finish_lines(const std::string& path, std::ostringstream& body, AppendedDat
   data.add("connectivity", "Int64", 1, conn.data(), conn.size() * 8);
   data.add("offsets", "Int64", 1, offs.data(), offs.size() * 8);
   body << "<Lines>\n" << data.take_xml() << "</Lines>\n</Piece>\n</PolyData>\n";
-  write_file_atomic(path, finish("PolyData", body.str(), data));
+  write_vtk(path, "PolyData", body.str(), data);
 }
 
 }  // namespace
@@ -123,7 +126,7 @@ void write_particles_vtu(const std::string& path, const World<D>& world,
   data.add("offsets", "Int64", 1, offs.data(), n * 8);
   data.add("types", "UInt8", 1, types.data(), n);
   body << "<Cells>\n" << data.take_xml() << "</Cells>\n</Piece>\n</UnstructuredGrid>\n";
-  write_file_atomic(path, finish("UnstructuredGrid", body.str(), data));
+  write_vtk(path, "UnstructuredGrid", body.str(), data);
 }
 
 template <int D>
@@ -185,7 +188,7 @@ void write_walls_vtp(const std::string& path, const World<D>& world, double half
   data.add("offsets", "Int64", 1, offs.data(), offs.size() * 8);
   const char* tag = lines ? "Lines" : "Polys";
   body << "<" << tag << ">\n" << data.take_xml() << "</" << tag << ">\n</Piece>\n</PolyData>\n";
-  write_file_atomic(path, finish("PolyData", body.str(), data));
+  write_vtk(path, "PolyData", body.str(), data);
 }
 
 template <int D>

@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "broadphase/list_history.hpp"
 #include "broadphase/neighbour_search.hpp"
 #include "test_util.hpp"
 #include "world/world_editing.hpp"
@@ -217,6 +218,65 @@ TYPED_TEST(NeighbourListTest, RebuildCarriesHistory) {
       }
     }
   EXPECT_GT(kept_walls, 10u);
+}
+
+// Before a build the old rows are cut to the pairs that carry a history: a spring that is not
+// +0 bit for bit (-0 is kept), or a bond without a spring. Every row keeps those pairs in
+// order, on one thread and on two.
+TYPED_TEST(NeighbourListTest, OldRowsKeepThePairsThatCarryAHistory) {
+  constexpr int D = TypeParam::value;
+  World<D> w = random_cloud<D>(Cloud::kUniform, 6000, D == 2 ? 200.0 : 30.0, 43);
+  w.contact_extras = true;
+  build_neighbour_list(w);
+  auto& L = w.nlist;
+  const std::size_t n = w.particles.size();
+  ASSERT_GT(L.other.size(), 1000u);
+  L.extra.assign(L.other.size(), ContactExtra<D>{});
+  auto minus_zero = [] {
+    if constexpr (D == 2) {
+      return -0.0;
+    } else {
+      return Vec<D>(-0.0, 0.0, 0.0);
+    }
+  };
+  std::vector<std::vector<std::uint32_t>> expected(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+      switch (k % 4) {
+        case 0:
+          L.spring[k] = unloaded_spring<D>();  // nothing carried
+          break;
+        case 1:
+          L.spring[k] = minus_zero();  // -0: kept
+          expected[i].push_back(L.other[k]);
+          break;
+        case 2:
+          L.extra[k].bonded = 1;  // a bond without a spring: kept
+          expected[i].push_back(L.other[k]);
+          break;
+        default:
+          if constexpr (D == 2) {
+            L.spring[k] = 1.0 + k;
+          } else {
+            L.spring[k] = Vec<D>(0.0, 1.0 + k, 0.0);
+          }
+          expected[i].push_back(L.other[k]);
+      }
+    }
+  for (int threads : {1, 2}) {
+    NeighbourList<D> old = L;
+    keep_loaded_pairs(old, n, threads);
+    ASSERT_EQ(old.start.size(), n + 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::vector<std::uint32_t> row(old.other.begin() + old.start[i],
+                                           old.other.begin() + old.start[i + 1]);
+      EXPECT_EQ(row, expected[i]) << "row " << i << ", " << threads << " threads";
+    }
+    ASSERT_EQ(old.spring.size(), old.other.size());
+    ASSERT_EQ(old.extra.size(), old.other.size());
+    for (std::size_t k = 0; k < old.other.size(); ++k)
+      EXPECT_TRUE(!zero_bits(old.spring[k]) || old.extra[k].bonded) << k;
+  }
 }
 
 // Grains removed with ContactHistory::kKeep: every pair of two remaining grains keeps its

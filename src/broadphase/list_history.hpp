@@ -1,0 +1,91 @@
+// The contact history carried across a neighbour-list build: the old rows' springs, moment
+// springs and bonds go to the same pairs in the new rows (src/broadphase/neighbour_search.cpp).
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "base/parallel.hpp"
+#include "contacts/neighbour_list.hpp"
+
+namespace geodem {
+
+// Copies the history of the pairs of an old row that are also in the new row; the
+// others start from `zero`, and `dropped` sees each old entry that is not carried over.
+// Both rows are sorted by partner index: one linear merge.
+template <typename T, typename Dropped>
+void merge_history(const std::uint32_t* old_other, const T* old_value, std::size_t old_n,
+                   const std::uint32_t* new_other, T* new_value, std::size_t new_n, const T& zero,
+                   Dropped&& dropped) {
+  std::size_t a = 0;
+  for (std::size_t b = 0; b < new_n; ++b) {
+    while (a < old_n && old_other[a] < new_other[b]) dropped(old_value[a++]);
+    if (a < old_n && old_other[a] == new_other[b]) {
+      new_value[b] = old_value[a++];
+    } else {
+      new_value[b] = zero;
+    }
+  }
+  while (a < old_n) dropped(old_value[a++]);
+}
+
+// Whether a value is all zero bits (+0.0 everywhere): a pair whose history is that starts
+// from exactly what an unlisted pair starts from.
+template <typename T>
+bool zero_bits(const T& v) {
+  static const T zero{};
+  return std::memcmp(&v, &zero, sizeof(T)) == 0;
+}
+
+// Keeps, of the old grain-grain rows, only the pairs that carry a history (a tangential
+// spring, moment springs or a bond): the merge gives every other pair an unloaded start,
+// the same bits the dropped entries held. During a build the old rows and the new ones are
+// both resident; the old ones then hold the touching pairs only, not every pair within the
+// skin.
+template <int D>
+void keep_loaded_pairs(NeighbourList<D>& old, std::size_t n, int threads) {
+  if (old.start.size() != n + 1) return;
+  const bool extras = !old.extra.empty() && old.extra.size() == old.other.size();
+  auto loaded = [&](std::size_t k) {
+    if (!zero_bits(old.spring[k])) return true;
+    if (!extras) return false;
+    const auto& e = old.extra[k];
+    return e.bonded != 0 || !zero_bits(e.roll) || !zero_bits(e.twist);
+  };
+  // Rows counted, then filled at their offsets, each pass on the step's threads.
+  const bool par = threads > 1 && n >= kParallelMin;
+  const auto rows = static_cast<std::ptrdiff_t>(n);
+  std::vector<std::uint32_t> start(n + 1, 0);
+#pragma omp parallel for num_threads(threads) schedule(static) if (par)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const auto i = static_cast<std::size_t>(r);
+    std::uint32_t kept = 0;
+    for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k) kept += loaded(k) ? 1u : 0u;
+    start[i + 1] = kept;
+  }
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  if (start[n] == old.other.size()) return;
+  std::vector<std::uint32_t> other(start[n]);
+  std::vector<TangentSpring<D>> spring(start[n]);
+  std::vector<ContactExtra<D>> extra(extras ? start[n] : 0);
+#pragma omp parallel for num_threads(threads) schedule(static) if (par)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const auto i = static_cast<std::size_t>(r);
+    std::uint32_t m = start[i];
+    for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k)
+      if (loaded(k)) {
+        other[m] = old.other[k];
+        spring[m] = old.spring[k];
+        if (extras) extra[m] = old.extra[k];
+        ++m;
+      }
+  }
+  old.start.swap(start);
+  old.other.swap(other);
+  old.spring.swap(spring);
+  old.extra.swap(extra);
+  std::vector<CellImage>().swap(old.image);  // not carried (see build_neighbour_list)
+}
+
+}  // namespace geodem
