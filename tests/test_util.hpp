@@ -19,6 +19,8 @@
 #include <type_traits>
 
 #include "base/dim.hpp"
+#include "clumps/clump_dynamics.hpp"
+#include "clumps/clump_template.hpp"
 #include "materials/material.hpp"
 #include "measure/measurements.hpp"
 #include "world/step.hpp"
@@ -318,5 +320,33 @@ struct LinearImpactTheory {
         -v * std::exp(-zeta * ts) * (std::cos(wd * ts) - zeta / wd * std::sin(wd * ts));
   }
 };
+
+// Clumps of template `t` (scale 0.01, density 2600) on a jittered lattice of counts[0] x
+// counts[1] (x counts[2]) sites `spacing` apart, created in shuffled order (unrelated to the
+// cells) with random orientations, and thrown towards the lattice's centre at `speed` times
+// their distance from it, so that they collide.
+template <int D>
+void throw_clumps_together(World<D>& w, const ResolvedClump<D>& t, std::array<int, 3> counts,
+                           double spacing, double jitter, double speed, std::uint16_t mat,
+                           std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec<D>> sites;
+  for (int i = 0; i < counts[0]; ++i)
+    for (int j = 0; j < counts[1]; ++j)
+      for (int l = 0; l < (D == 3 ? counts[2] : 1); ++l) sites.push_back(vec<D>(i, j, l) * spacing);
+  std::shuffle(sites.begin(), sites.end(), rng);
+  const Vec<D> centre = vec<D>(0.5 * spacing * (counts[0] - 1), 0.5 * spacing * (counts[1] - 1),
+                               0.5 * spacing * (counts[2] - 1));
+  for (const Vec<D>& site : sites) {
+    Vec<D> x = site;
+    for (int k = 0; k < D; ++k) x[k] += jitter * (2.0 * u(rng) - 1.0);
+    typename Dim<D>::Orient q;
+    if constexpr (D == 2)
+      q = 6.0 * u(rng);
+    else
+      q = random_orientation<3>(u(rng), u(rng), u(rng));
+    add_clump(w, t, x, q, 0.01, 2600.0, mat, Vec<D>(-speed * (x - centre)));
+  }
+}
 
 }  // namespace geodem::test

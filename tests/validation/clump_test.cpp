@@ -235,26 +235,9 @@ TYPED_TEST(Clump, RenumberingKeepsMembersAndDynamics) {
     w.resolve_pair_laws();
     const auto t = pair_template<D>(1.8);
     std::mt19937_64 rng(3);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    // Clumps on a jittered lattice (bounding circles apart), created in an order unrelated
-    // to the cells, thrown towards the centre so that they collide.
+    // Bounding circles apart at first.
     const int side = D == 2 ? 8 : 4;
-    std::vector<Vec<D>> sites;
-    for (int i = 0; i < side; ++i)
-      for (int j = 0; j < side; ++j)
-        for (int l = 0; l < (D == 3 ? side : 1); ++l) sites.push_back(vec<D>(i, j, l) * 0.04);
-    std::shuffle(sites.begin(), sites.end(), rng);
-    const Vec<D> centre = Vec<D>::Constant(0.02 * (side - 1));
-    for (const Vec<D>& site : sites) {
-      Vec<D> x = site;
-      for (int k = 0; k < D; ++k) x[k] += 0.001 * (2.0 * u(rng) - 1.0);
-      typename Dim<D>::Orient q;
-      if constexpr (D == 2)
-        q = 6.0 * u(rng);
-      else
-        q = random_orientation<3>(u(rng), u(rng), u(rng));
-      add_clump(w, t, x, q, 0.01, 2600.0, mat, Vec<D>(-5.0 * (x - centre)));
-    }
+    throw_clumps_together(w, t, {side, side, side}, 0.04, 0.001, 5.0, mat, rng);
     w.dt = 1e-5;  // about 1/20 of the critical step
     w.sort_interval = sort_interval;
     return w;

@@ -48,6 +48,17 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 
+// The grains' state, their numbering and the listed pairs with their springs.
+template <int D>
+void expect_same_grains(const World<D>& a, const World<D>& b) {
+  EXPECT_TRUE(same_bits(a.particles.pos, b.particles.pos));
+  EXPECT_TRUE(same_bits(a.particles.vel, b.particles.vel));
+  EXPECT_TRUE(same_bits(a.particles.angvel, b.particles.angvel));
+  EXPECT_TRUE(same_bits(a.particles.id, b.particles.id));
+  EXPECT_TRUE(same_bits(a.nlist.other, b.nlist.other));
+  EXPECT_TRUE(same_bits(a.nlist.spring, b.nlist.spring));
+}
+
 template <int D>
 void expect_identical(const World<D>& a, const World<D>& b, int threads) {
   SCOPED_TRACE(::testing::Message() << threads << " threads against 1");
@@ -121,12 +132,8 @@ TYPED_TEST(ThreadDeterminism, PeriodicCellGivesTheSameBitsOnOneTwoAndThreeThread
   for (int threads : {2, 3}) {
     SCOPED_TRACE(::testing::Message() << threads << " threads against 1");
     const World<D> other = run_periodic<D>(threads);
-    EXPECT_TRUE(same_bits(one.particles.pos, other.particles.pos));
-    EXPECT_TRUE(same_bits(one.particles.vel, other.particles.vel));
-    EXPECT_TRUE(same_bits(one.particles.id, other.particles.id));
-    EXPECT_TRUE(same_bits(one.nlist.other, other.nlist.other));
+    expect_same_grains(one, other);
     EXPECT_TRUE(same_bits(one.nlist.image, other.nlist.image));
-    EXPECT_TRUE(same_bits(one.nlist.spring, other.nlist.spring));
     EXPECT_TRUE(one.cell.h == other.cell.h);
     EXPECT_TRUE(one.cell_fabric == other.cell_fabric);
     EXPECT_TRUE(one.cell_stiffness == other.cell_stiffness);
@@ -145,26 +152,10 @@ World<D> run_clumps(int threads) {
   shape.radius = {1.0, 1.0, 0.8};
   const auto t = resolve_clump(shape);
   std::mt19937_64 rng(9);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  // Clumps on a jittered lattice, created in an order unrelated to the cells (so that the
-  // first build renumbers them), thrown towards the centre so that they collide.
-  const int nx = D == 2 ? 64 : 14, ny = D == 2 ? 48 : 14, nz = D == 2 ? 1 : 14;
-  std::vector<Vec<D>> sites;
-  for (int i = 0; i < nx; ++i)
-    for (int j = 0; j < ny; ++j)
-      for (int l = 0; l < nz; ++l) sites.push_back(vec<D>(i, j, l) * 0.05);
-  std::shuffle(sites.begin(), sites.end(), rng);
-  const Vec<D> centre = vec<D>(0.025 * (nx - 1), 0.025 * (ny - 1), 0.025 * (nz - 1));
-  for (const Vec<D>& site : sites) {
-    Vec<D> x = site;
-    for (int k = 0; k < D; ++k) x[k] += 0.0005 * (2.0 * u(rng) - 1.0);
-    typename Dim<D>::Orient q;
-    if constexpr (D == 2)
-      q = 6.0 * u(rng);
-    else
-      q = random_orientation<3>(u(rng), u(rng), u(rng));
-    add_clump(w, t, x, q, 0.01, 2600.0, mat, Vec<D>(-30.0 * (x - centre)));
-  }
+  // Created in an order unrelated to the cells, so that the first build renumbers them.
+  throw_clumps_together(w, t,
+                        D == 2 ? std::array<int, 3>{64, 48, 1} : std::array<int, 3>{14, 14, 14},
+                        0.05, 0.0005, 30.0, mat, rng);
   w.local_damping = 0.2;
   w.dt = 1e-5;
   w.sort_interval = 2;
@@ -186,15 +177,11 @@ TYPED_TEST(ThreadDeterminism, ClumpsGiveTheSameBitsOnOneTwoAndThreeThreads) {
   for (int threads : {2, 3}) {
     SCOPED_TRACE(::testing::Message() << threads << " threads against 1");
     const World<D> other = run_clumps<D>(threads);
-    EXPECT_TRUE(same_bits(one.particles.pos, other.particles.pos));
-    EXPECT_TRUE(same_bits(one.particles.vel, other.particles.vel));
-    EXPECT_TRUE(same_bits(one.particles.angvel, other.particles.angvel));
-    EXPECT_TRUE(same_bits(one.particles.id, other.particles.id));
+    expect_same_grains(one, other);
     EXPECT_TRUE(same_bits(one.clumps.pos, other.clumps.pos));
     EXPECT_TRUE(same_bits(one.clumps.vel, other.clumps.vel));
     EXPECT_TRUE(same_bits(one.clumps.angvel, other.clumps.angvel));
     EXPECT_TRUE(same_bits(one.clumps.orient, other.clumps.orient));
-    EXPECT_TRUE(same_bits(one.nlist.spring, other.nlist.spring));
     EXPECT_TRUE(one.stats.fabric_stress == other.stats.fabric_stress);
   }
 }
