@@ -17,7 +17,7 @@ namespace geodem::test {
 namespace {
 
 constexpr std::uint64_t kGolden2D = 0x131700012196f434ULL;
-constexpr std::uint64_t kGolden3D = 0x34ebc59b2c270428ULL;
+constexpr std::uint64_t kGolden3D = 0x7506604f0da637a8ULL;
 
 struct Fnv1a {
   std::uint64_t h = 14695981039346656037ULL;
