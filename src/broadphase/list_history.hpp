@@ -2,8 +2,8 @@
 // springs and bonds go to the same pairs in the new rows (src/broadphase/neighbour_search.cpp).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "base/parallel.hpp"
@@ -34,8 +34,8 @@ void merge_history(const std::uint32_t* old_other, const T* old_value, std::size
 // from exactly what an unlisted pair starts from.
 template <typename T>
 bool zero_bits(const T& v) {
-  static const T zero{};
-  return std::memcmp(&v, &zero, sizeof(T)) == 0;
+  const auto* b = reinterpret_cast<const unsigned char*>(&v);
+  return std::all_of(b, b + sizeof(T), [](unsigned char c) { return c == 0; });
 }
 
 // Keeps, of the old grain-grain rows, only the pairs that carry a history (a tangential
