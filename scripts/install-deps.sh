@@ -2,7 +2,7 @@
 # Installs the Debian packages geodem needs, only those missing.
 # Usage: scripts/install-deps.sh [--with-peers]   (peers: LIGGGHTS, yade and LAMMPS, for benchmarks)
 set -euo pipefail
-packages=(g++ cmake ninja-build libeigen3-dev libtomlplusplus-dev libcli11-dev
+packages=(g++ cmake ninja-build libeigen3-dev libxsimd-dev libtomlplusplus-dev libcli11-dev
           pybind11-dev python3-dev python3-pytest
           nlohmann-json3-dev zlib1g-dev libgtest-dev libgmock-dev libbenchmark-dev
           python3 python3-numpy python3-matplotlib clang-format

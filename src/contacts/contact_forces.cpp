@@ -18,55 +18,18 @@
 #include <algorithm>
 
 #include "base/parallel.hpp"
+#include "contacts/batched_pairs.hpp"
+#include "contacts/contact_batch.hpp"
 #include "contacts/contact_law.hpp"
+#include "contacts/slab_tally.hpp"
 
 namespace geodem {
 
 namespace {
 
-// What one slab adds to the world's sums.
-template <int D>
-struct SlabTally {
-  using Vec = typename Dim<D>::Vec;
-  ContactStats<D> stats;
-  std::uint64_t broken_bonds = 0;
-  std::int64_t overlap_offender = -1, overlap_partner = -1;
-  double overlap_ratio = 0.0;
-  std::vector<Vec> wall_force;  // per wall
-  std::vector<double> wall_stiffness;
-  std::vector<double> wall_dashpot;
-  Vec cell_stiffness = Vec::Zero();  // periodic cell: sum of kn (d_k n_k)^2
-  typename Dim<D>::Tensor cell_fabric = Dim<D>::Tensor::Zero();  // periodic cell: sum of d f^T
-
-  void note_overlap(std::size_t i, std::int64_t partner, double ratio) {
-    if (overlap_offender >= 0) return;
-    overlap_offender = static_cast<std::int64_t>(i);
-    overlap_partner = partner;
-    overlap_ratio = ratio;
-  }
-};
-
-template <int D>
-void add_stats(ContactStats<D>& a, const ContactStats<D>& b) {
-  a.fabric_stress += b.fabric_stress;
-  a.sum_force += b.sum_force;
-  a.contacts += b.contacts;
-  a.wall_contacts += b.wall_contacts;
-  a.spar_contacts += b.spar_contacts;
-  a.elastic_energy += b.elastic_energy;
-}
-
 // Grain-grain contacts of the rows [first, last) (one slab). `Extras`: the contacts carry rolling
 // springs and bond states (a separate instantiation, so that plain frictional packings pay nothing
 // for them).
-// How the periodic cell's sum of d f^T over contacts is taken. Per contact it is a tensor
-// update in the pair loop; in 3D its nine sums do not fit in the registers beside the loop's
-// own state and cost 12 % of a step (20,000 spheres). There it is summed over grains instead,
-// as x F^T with F each grain's total contact force, plus the image offsets' part per contact
-// (cell_fabric_of_grains). In 2D the per-contact update costs nothing measurable and is kept.
-template <int D>
-constexpr bool kFabricByGrain = D == 3;
-
 template <int D, bool Measure, bool Extras, bool Periodic>
 void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D>& t,
                typename SlabCrossings<SlabCrossing<D>>::Writer crossing) {
@@ -245,11 +208,19 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   SlabTally<D>* tally = tallies.data();
   auto& crossing = world.slab_crossing;
   crossing.prepare(world.particles.size());
-  for_slabs(world.particles.size(), world.threads,
-            [&](std::size_t s, std::size_t first, std::size_t last) {
-              pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally[s],
-                                                      crossing.slab(s));
-            });
+  // Contacts without extras run in batches unless the scalar loop is asked for.
+  const bool batched = contact_path() != ContactPath::kScalar;
+  for_slabs(
+      world.particles.size(), world.threads,
+      [&](std::size_t s, std::size_t first, std::size_t last) {
+        if constexpr (!Extras) {
+          if (batched) {
+            batched_pair_rows<D, Measure, Periodic>(world, first, last, tally[s], crossing.slab(s));
+            return;
+          }
+        }
+        pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally[s], crossing.slab(s));
+      });
   // The crossing forces, each grain's in slab order.
   auto& P = world.particles;
   crossing.apply(world.threads, [&P](const SlabCrossing<D>& c) {

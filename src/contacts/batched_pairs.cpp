@@ -1,0 +1,220 @@
+// The pair loop of a slab in three passes over batches of touching contacts:
+//   gather  rows in index order, pairs in list order: measure each listed pair; a pair apart
+//           ends its history, a touching one is copied into the batch (branch, radii, masses,
+//           velocities, spins, spring);
+//   compute one kernel call for the batch (contacts/contact_batch.cpp), every contact in its
+//           own vector lane;
+//   add     the contacts in the batch's order, which is the list's: each force and torque
+//           goes to the grains exactly as in the scalar loop (contacts/contact_forces.cpp),
+//           the row's own sum to grain i when the next row starts.
+// A batch holds one pair law (a change of law, as between materials, starts a new batch) and
+// may end inside a row: the row's sums carry over to the next batch.
+#include "contacts/batched_pairs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+#include <vector>
+
+#include "contacts/contact_batch.hpp"
+#include "contacts/contact_law.hpp"
+
+namespace geodem {
+
+namespace {
+
+// The doubles of an array of D-vectors (Eigen's fixed vectors hold their coefficients and
+// nothing else) or of plain doubles.
+template <typename T>
+double* doubles(std::vector<T>& v) {
+  if constexpr (std::is_same_v<T, double>) {
+    return v.data();
+  } else {
+    static_assert(sizeof(T) == T::SizeAtCompileTime * sizeof(double));
+    return v.empty() ? nullptr : v.front().data();
+  }
+}
+
+BatchLaw batch_law_of(const PairLaw& p) {
+  return {p.law == LawKind::kHertz,
+          p.constant_stiffness,
+          p.per_unit_thickness,
+          p.tangential_damping,
+          p.kn,
+          p.kt,
+          p.e1r,
+          p.e2r,
+          p.kt_over_kn,
+          p.mu,
+          p.beta,
+          p.hertz_damp,
+          p.estar,
+          p.gstar};
+}
+
+}  // namespace
+
+template <int D, bool Measure, bool Periodic>
+void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D>& t,
+                       typename SlabCrossings<SlabCrossing<D>>::Writer crossing) {
+  using Vec = typename Dim<D>::Vec;
+  using Rot = typename Dim<D>::Rot;
+  constexpr int kRot = ContactBatch<D>::kRot;
+  auto& P = world.particles;
+  auto& L = world.nlist;
+  const std::size_t nmat = world.materials.size();
+  const Vec* __restrict pos = P.pos.data();
+  const double* __restrict radius = P.radius.data();
+  const std::uint16_t* __restrict material = P.material.data();
+  Vec* __restrict force = P.force.data();
+  Rot* __restrict torque = P.torque.data();
+  const std::uint32_t* __restrict start = L.start.data();
+  const std::uint32_t* __restrict other = L.other.data();
+  TangentSpring<D>* __restrict spring = L.spring.data();
+  const std::uint16_t* share =
+      world.collision_shares.pair.empty() ? nullptr : world.collision_shares.pair.data();
+  const CellImage* image = Periodic ? L.image.data() : nullptr;
+  const PeriodicCell<D>& cell = world.cell;
+  const double overlap_limit = world.overlap_limit;
+
+  // Zeroed once: the lanes a kernel computes beyond the batch's end then index grain 0 and
+  // pair 0, or an earlier contact.
+  ContactBatch<D> batch{};
+  const BatchGrains grains{doubles(P.pos),    doubles(P.vel),    doubles(P.angvel), radius,
+                           P.inv_mass.data(), doubles(L.spring), share != nullptr};
+  int n = 0;
+  const PairLaw* law = nullptr;  // the batch's
+  BatchLaw batch_law;
+  // The row whose own sums are open (none yet), and those sums.
+  std::size_t open_row = last;
+  Vec fi = Vec::Zero();
+  Rot ti = Dim<D>::zero_rot();
+  auto close_row = [&] {
+    if (open_row == last) return;
+    force[open_row] += fi;
+    torque[open_row] += ti;
+    fi = Vec::Zero();
+    ti = Dim<D>::zero_rot();
+    open_row = last;
+  };
+
+  auto add_batch = [&] {
+    batch_contact_forces<D, Periodic>(batch_law, grains, world.dt, batch, n);
+    for (int c = 0; c < n; ++c) {
+      const auto i = static_cast<std::size_t>(batch.i[c]);
+      const auto j = static_cast<std::uint32_t>(batch.j[c]);
+      const auto k = static_cast<std::uint32_t>(batch.k[c]);
+      if (i != open_row) {
+        close_row();
+        open_row = i;
+      }
+      const double ri = radius[i], rj = radius[j], delta = batch.delta[c];
+      if (delta > overlap_limit * std::min(ri, rj)) [[unlikely]]
+        t.note_overlap(i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
+      Vec f, d;
+      Rot tqi, tj;
+      for (int a = 0; a < D; ++a) {
+        f[a] = batch.f[a][c];
+        d[a] = batch.d[a][c];
+      }
+      if constexpr (D == 3) {
+        for (int a = 0; a < kRot; ++a) {
+          tqi[a] = batch.tqi[a][c];
+          tj[a] = batch.tj[a][c];
+        }
+      } else {
+        tqi = batch.tqi[0][c];
+        tj = batch.tj[0][c];
+      }
+      fi -= f;
+      ti -= tqi;
+      if (j < last) {  // same slab
+        force[j] += f;
+        torque[j] += tj;
+      } else {
+        crossing.push({f, tj, j});
+      }
+      const double fn = batch.fn[c];
+      if constexpr (Periodic) {
+        const Vec nrm = d * (1.0 / std::sqrt(d.squaredNorm()));
+        if constexpr (!kFabricByGrain<D>) {
+          t.cell_fabric += d * f.transpose();
+        } else if (!image[k].home()) [[unlikely]] {
+          t.cell_fabric += cell.shift(image[k]) * f.transpose();
+        }
+        t.cell_stiffness +=
+            normal_stiffness(*law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
+      }
+      if constexpr (Measure) {
+        t.stats.fabric_stress += d * f.transpose();
+        t.stats.sum_force += f.norm();
+        ++t.stats.contacts;
+        if (fn > 0.0) t.stats.elastic_energy += normal_energy(*law, ri, rj, fn, delta);
+      }
+    }
+    n = 0;
+  };
+
+  for (std::size_t i = first; i < last; ++i) {
+    const std::uint32_t b = start[i], e = start[i + 1];
+    if (b == e) continue;
+    const Vec xi = pos[i];
+    const double ri = radius[i];
+    const PairLaw* laws = world.pair_laws.data() + material[i] * nmat;
+    for (std::uint32_t k = b; k < e; ++k) {
+      const std::uint32_t j = other[k];
+      Vec d = pos[j] - xi;
+      if constexpr (Periodic) {
+        if (!image[k].home()) d += cell.shift(image[k]);
+      }
+      const double rj = radius[j];
+      const double rs = ri + rj;
+      const double dist2 = d.squaredNorm();
+      // Every listed pair is written into the batch's next slot, which only a touching pair
+      // keeps: whether a pair touches is hard to predict, and a branch on it would discard the
+      // work in flight at each wrong guess.
+      const bool apart = dist2 >= rs * rs;
+      // Apart: the history ends (written only when there is one, to spare stores; the
+      // conditions are combined without a jump).
+      if (apart & (spring_norm2<D>(spring[k]) != 0.0)) spring[k] = unloaded_spring<D>();
+      const PairLaw* pair_law = laws + material[j];
+      if (!apart & (pair_law != law)) [[unlikely]] {
+        if (n > 0) add_batch();
+        law = pair_law;
+        batch_law = batch_law_of(*law);
+      }
+      if constexpr (Periodic) {
+        // Velocities are relative to the cell's affine field: the centres' relative
+        // velocity gains L d.
+        const Vec shift = cell.vel_grad * d;
+        for (int a = 0; a < D; ++a) {
+          batch.d[a][n] = d[a];
+          batch.vel_shift[a][n] = shift[a];
+        }
+      }
+      if (share) batch.share[n] = share[k];
+      batch.i[n] = static_cast<std::int64_t>(i);
+      batch.j[n] = j;
+      batch.k[n] = k;
+      n += apart ? 0 : 1;
+      if (n == ContactBatch<D>::kSize) add_batch();
+    }
+  }
+  if (n > 0) add_batch();
+  close_row();
+}
+
+#define GEODEM_BATCHED_PAIR_ROWS(D, M, P)                                                      \
+  template void batched_pair_rows<D, M, P>(World<D>&, std::size_t, std::size_t, SlabTally<D>&, \
+                                           SlabCrossings<SlabCrossing<D>>::Writer);
+GEODEM_BATCHED_PAIR_ROWS(2, false, false)
+GEODEM_BATCHED_PAIR_ROWS(2, false, true)
+GEODEM_BATCHED_PAIR_ROWS(2, true, false)
+GEODEM_BATCHED_PAIR_ROWS(2, true, true)
+GEODEM_BATCHED_PAIR_ROWS(3, false, false)
+GEODEM_BATCHED_PAIR_ROWS(3, false, true)
+GEODEM_BATCHED_PAIR_ROWS(3, true, false)
+GEODEM_BATCHED_PAIR_ROWS(3, true, true)
+#undef GEODEM_BATCHED_PAIR_ROWS
+
+}  // namespace geodem

@@ -1,0 +1,19 @@
+// The grain-grain pair loop of one slab in batches (contacts/contact_batch.hpp): for contacts
+// without extras (bonds, rolling springs), in a box or a periodic cell.
+#pragma once
+
+#include <cstddef>
+
+#include "base/parallel.hpp"
+#include "contacts/slab_tally.hpp"
+#include "world/world.hpp"
+
+namespace geodem {
+
+// Forces of the grain-grain contacts listed in the rows [first, last), added to the grains in
+// the order of the scalar loop (contacts/contact_forces.cpp), with the same bits.
+template <int D, bool Measure, bool Periodic>
+void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D>& t,
+                       typename SlabCrossings<SlabCrossing<D>>::Writer crossing);
+
+}  // namespace geodem

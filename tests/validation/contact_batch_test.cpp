@@ -1,0 +1,319 @@
+// The batched contact loop and its kernels for each instruction set
+// (contacts/contact_batch.hpp) give the scalar loop's results to the bit: the same packing run
+// on every path the machine supports ends in the same state (positions, velocities, spins,
+// springs, wall forces, measured stresses). The cases cover what the kernels branch on: the
+// linear law with constant stiffness and a dashpot, with the tangential dashpot, with two
+// grain materials (a batch ends where the law changes), Hertz-Mindlin, the linear law from a
+// contact modulus (per unit thickness in 2D) with clumps (shared collisions), and a sheared
+// periodic cell (image shifts, the affine field's velocity, the cell's sums).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <string>
+#include <utility>
+
+#include "clumps/clump_template.hpp"
+#include "contacts/contact_batch.hpp"
+#include "contacts/contact_law.hpp"
+#include "pressed_packing.hpp"
+
+namespace geodem::test {
+namespace {
+
+template <typename T>
+class ContactBatches : public ::testing::Test {};
+TYPED_TEST_SUITE(ContactBatches, Dims, DimNames);
+
+// Puts the step back on its default path when a test ends.
+struct PathGuard {
+  ~PathGuard() { set_contact_path(default_contact_path()); }
+};
+
+enum class Case { kLinear, kTangentialDashpot, kTwoMaterials, kHertz, kClumps, kPeriodic };
+
+const char* case_name(Case c) {
+  switch (c) {
+    case Case::kLinear:
+      return "linear";
+    case Case::kTangentialDashpot:
+      return "tangential dashpot";
+    case Case::kTwoMaterials:
+      return "two grain materials";
+    case Case::kHertz:
+      return "Hertz-Mindlin";
+    case Case::kClumps:
+      return "clumps, contact modulus";
+    case Case::kPeriodic:
+      return "sheared periodic cell";
+  }
+  return "?";
+}
+
+template <int D>
+World<D> pressed(Case c) {
+  World<D> w = pressed_packing<D>(false, 3000, D == 2 ? 50 : 12, 4.0, 3);
+  if (c == Case::kTangentialDashpot) w.materials[0].tangential_damping = true;
+  if (c == Case::kTwoMaterials) {
+    Material rough = w.materials[0];
+    rough.name = "rough";
+    rough.friction = 0.9;
+    const auto m = add_material(w, rough);
+    for (std::size_t i = 0; i < w.particles.size(); i += 3) w.particles.material[i] = m;
+  }
+  if (c == Case::kHertz) {
+    for (Material& m : w.materials) {  // the grains and the walls
+      m.law = LawKind::kHertz;
+      m.young = 2e8;
+      m.poisson = 0.3;
+    }
+  }
+  w.resolve_pair_laws();
+  return w;
+}
+
+template <int D>
+World<D> clumps() {
+  World<D> w;
+  const auto mat = add_material(w, modulus_material(1e7, 0.5, 0.5, 0.5));
+  w.resolve_pair_laws();
+  ClumpTemplate<D> shape;
+  shape.centre = {Vec<D>::Zero(), Vec<D>(1.8 * axis<D>(0)),
+                  Vec<D>(0.9 * axis<D>(0) + 1.4 * axis<D>(1))};
+  shape.radius = {1.0, 1.0, 0.8};
+  std::mt19937_64 rng(9);
+  throw_clumps_together(w, resolve_clump(shape),
+                        D == 2 ? std::array<int, 3>{24, 20, 1} : std::array<int, 3>{7, 7, 7}, 0.05,
+                        0.0005, 30.0, mat, rng);
+  w.local_damping = 0.2;
+  w.dt = 1e-5;
+  w.sort_interval = 2;
+  return w;
+}
+
+template <int D>
+World<D> periodic() {
+  const double r = 1e-3, spacing = 2.1e-3, kn = D == 2 ? 1e6 : 1e4;
+  const int side = D == 2 ? 40 : 12;
+  const Vec<D> size = Vec<D>::Constant(side * spacing);
+  World<D> w;
+  add_material(w, linear_material(kn, 0.5 * kn, 0.5, 0.7, 2600.0));
+  w.resolve_pair_laws();
+  w.cell.periodic = true;
+  w.cell.h = size.asDiagonal();
+  w.cell.vel_grad(0, 1) = 20.0;
+  w.sort_interval = 2;
+  std::mt19937_64 rng(5);
+  fill_lattice(w, Vec<D>(Vec<D>::Zero()), size, spacing, 0.8 * r, r, 0.04 * r, 2.0, 2600.0, 0, rng);
+  w.dt = 1e-6;
+  return w;
+}
+
+// The state after the run, and the most grain-grain contacts measured along it.
+template <int D>
+std::pair<World<D>, std::size_t> run(Case c, ContactPath path) {
+  EXPECT_TRUE(set_contact_path(path));
+  World<D> w = c == Case::kClumps     ? clumps<D>()
+               : c == Case::kPeriodic ? periodic<D>()
+                                      : pressed<D>(c);
+  const int steps = c == Case::kClumps ? 1200 : 300;
+  std::size_t most = 0;
+  for (int k = 0; k < steps; ++k) {
+    if (k == 100 && !w.walls.empty()) w.walls[2].velocity = vec<D>(0.05, 0.0, 0.0);
+    w.measure_this_step = k % 25 == 0 || k == steps - 1;
+    step(w);
+    if (w.measure_this_step) most = std::max(most, w.stats.contacts);
+  }
+  return {std::move(w), most};
+}
+
+template <typename T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+template <int D>
+void expect_identical(const World<D>& a, const World<D>& b) {
+  EXPECT_TRUE(same_bits(a.particles.pos, b.particles.pos));
+  EXPECT_TRUE(same_bits(a.particles.vel, b.particles.vel));
+  EXPECT_TRUE(same_bits(a.particles.angvel, b.particles.angvel));
+  EXPECT_TRUE(same_bits(a.particles.force, b.particles.force));
+  EXPECT_TRUE(same_bits(a.particles.torque, b.particles.torque));
+  EXPECT_TRUE(same_bits(a.particles.id, b.particles.id));
+  EXPECT_TRUE(same_bits(a.nlist.other, b.nlist.other));
+  EXPECT_TRUE(same_bits(a.nlist.spring, b.nlist.spring));
+  for (std::size_t k = 0; k < a.walls.size(); ++k) {
+    EXPECT_TRUE(a.walls[k].force == b.walls[k].force) << "wall " << k;
+  }
+  EXPECT_TRUE(a.stats.fabric_stress == b.stats.fabric_stress);
+  EXPECT_EQ(a.stats.sum_force, b.stats.sum_force);
+  EXPECT_EQ(a.stats.contacts, b.stats.contacts);
+  EXPECT_EQ(a.stats.elastic_energy, b.stats.elastic_energy);
+  EXPECT_EQ(a.dt, b.dt);
+  EXPECT_TRUE(same_bits(a.clumps.pos, b.clumps.pos));
+  EXPECT_TRUE(same_bits(a.clumps.angvel, b.clumps.angvel));
+  EXPECT_TRUE(a.cell.h == b.cell.h);
+  EXPECT_TRUE(a.cell_fabric == b.cell_fabric);
+  EXPECT_TRUE(a.cell_stiffness == b.cell_stiffness);
+}
+
+TYPED_TEST(ContactBatches, EveryPathGivesTheScalarLoopsBits) {
+  constexpr int D = TypeParam::value;
+  PathGuard guard;
+  int compared = 0;
+  for (Case c : {Case::kLinear, Case::kTangentialDashpot, Case::kTwoMaterials, Case::kHertz,
+                 Case::kClumps, Case::kPeriodic}) {
+    SCOPED_TRACE(case_name(c));
+    const auto [scalar, most] = run<D>(c, ContactPath::kScalar);
+    // The case exercises what it claims: many contacts.
+    ASSERT_GT(most, 150u);
+    for (ContactPath p : {ContactPath::kBaseline, ContactPath::kAvx2, ContactPath::kAvx512}) {
+      if (!contact_path_supported(p)) continue;
+      SCOPED_TRACE(contact_path_name(p));
+      expect_identical(scalar, run<D>(c, p).first);
+      ++compared;
+    }
+  }
+  if (compared == 0) GTEST_SKIP() << "no batch path on this processor";
+  report("batch paths compared with the scalar loop (6 cases)", compared / 6);
+}
+
+double component(double spin, int) {
+  return spin;
+}
+double component(const Vec<3>& spin, int a) {
+  return spin[a];
+}
+
+// One kernel call on random contacts, against the scalar law contact by contact: springs
+// turned far out of the tangent plane (the kernel's rare branch), sliding and sticking
+// contacts, zero springs of either sign, with and without dashpots, both laws.
+template <int D>
+void expect_kernel_matches_law(const PairLaw& law, ContactPath path, std::mt19937_64& rng) {
+  using V = Vec<D>;
+  using R = typename Dim<D>::Rot;
+  constexpr int n = 61;  // not a multiple of any vector width: the last vector is partial
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<V> pos(2 * n), vel(2 * n);
+  std::vector<R> angvel(2 * n);
+  std::vector<double> radius(2 * n), inv_mass(2 * n);
+  std::vector<TangentSpring<D>> spring(n);
+  ContactBatch<D> b{};
+  for (int c = 0; c < n; ++c) {
+    const std::size_t i = 2 * c, j = 2 * c + 1;
+    radius[i] = 1e-3 * (1.0 + 0.5 * u(rng)), radius[j] = 1e-3 * (1.0 + 0.5 * u(rng));
+    inv_mass[i] = c % 7 == 0 ? 0.0 : 1e5 * (1.5 + u(rng)), inv_mass[j] = 1e5 * (1.5 + u(rng));
+    V dir;
+    for (int a = 0; a < D; ++a) dir[a] = u(rng);
+    pos[i] = V::Zero();
+    pos[j] = dir.normalized() * (radius[i] + radius[j]) * (1.0 - 0.02 * std::abs(u(rng)));
+    for (int a = 0; a < D; ++a) vel[i][a] = u(rng), vel[j][a] = u(rng);
+    if constexpr (D == 3) {
+      for (int a = 0; a < 3; ++a) angvel[i][a] = 100 * u(rng), angvel[j][a] = 100 * u(rng);
+      // Springs along random directions: most far from the tangent plane.
+      for (int a = 0; a < 3; ++a) spring[c][a] = (c % 5 == 0 ? 1e-3 : 1.0) * u(rng);
+      // A third nearly in the tangent plane, as the normal turns little in a step (the
+      // series branch).
+      const V normal = (pos[j] - pos[i]).normalized();
+      if (c % 3 == 1) spring[c] -= (1.0 - 3e-3 * u(rng)) * spring[c].dot(normal) * normal;
+      if (c % 11 == 0) spring[c] = V(-0.0, 0.0, -0.0);
+    } else {
+      angvel[i] = 100 * u(rng), angvel[j] = 100 * u(rng);
+      spring[c] = c % 11 == 0 ? -0.0 : u(rng);
+    }
+    b.i[c] = static_cast<std::int64_t>(i), b.j[c] = static_cast<std::int64_t>(j), b.k[c] = c;
+  }
+  std::vector<TangentSpring<D>> expected = spring;
+  auto doubles = [](auto& v) { return reinterpret_cast<double*>(v.data()); };
+  const BatchGrains g{doubles(pos),  doubles(vel),    doubles(angvel),
+                      radius.data(), inv_mass.data(), doubles(spring),
+                      false};
+  const BatchLaw bl{law.law == LawKind::kHertz,
+                    law.constant_stiffness,
+                    law.per_unit_thickness,
+                    law.tangential_damping,
+                    law.kn,
+                    law.kt,
+                    law.e1r,
+                    law.e2r,
+                    law.kt_over_kn,
+                    law.mu,
+                    law.beta,
+                    law.hertz_damp,
+                    law.estar,
+                    law.gstar};
+  ASSERT_TRUE(set_contact_path(path));
+  const double dt = 1e-6;
+  batch_contact_forces<D, false>(bl, g, dt, b, n);
+  for (int c = 0; c < n; ++c) {
+    const std::size_t i = 2 * c, j = 2 * c + 1;
+    const V d = pos[j] - pos[i];
+    const double dist = std::sqrt(d.squaredNorm());
+    const V nrm = d * (1.0 / dist);
+    const double delta = radius[i] + radius[j] - dist;
+    const double ai = radius[i] - 0.5 * delta, aj = radius[j] - 0.5 * delta;
+    const V vrel = (vel[j] - Dim<D>::cross(angvel[j], aj * nrm)) -
+                   (vel[i] + Dim<D>::cross(angvel[i], ai * nrm));
+    double fn;
+    const V f = contact_force<D>(law, radius[i], radius[j], inv_mass[i] + inv_mass[j], nrm, delta,
+                                 vrel, dt, expected[c], fn);
+    const R tq = Dim<D>::cross(nrm, f);
+    V fb;
+    for (int a = 0; a < D; ++a) fb[a] = b.f[a][c];
+    EXPECT_EQ(std::memcmp(&fb, &f, sizeof(V)), 0) << "contact " << c;
+    EXPECT_EQ(std::memcmp(&spring[c], &expected[c], sizeof(spring[c])), 0) << "contact " << c;
+    EXPECT_EQ(b.fn[c], fn);
+    R ti = ai * tq, tj = -(aj * tq);
+    for (int a = 0; a < ContactBatch<D>::kRot; ++a) {
+      EXPECT_EQ(b.tqi[a][c], component(ti, a)) << "contact " << c;
+      EXPECT_EQ(b.tj[a][c], component(tj, a)) << "contact " << c;
+    }
+  }
+}
+
+TYPED_TEST(ContactBatches, KernelsGiveTheScalarLawsBitsOnRandomContacts) {
+  constexpr int D = TypeParam::value;
+  PathGuard guard;
+  std::mt19937_64 rng(17);
+  std::vector<Material> materials;
+  materials.push_back(linear_material(1e4, 5e3, 0.4, 0.5));
+  materials.push_back(linear_material(1e4, 5e3, 0.4, 0.5));
+  materials.back().tangential_damping = true;
+  materials.push_back(modulus_material(1e8, 0.4, 0.3, 0.8));
+  materials.push_back(hertz_material(1e8, 0.3, 2600.0, 0.5, 0.6));
+  materials.push_back(hertz_material(1e8, 0.3, 2600.0, 0.5, 0.6));
+  materials.back().tangential_damping = true;
+  materials.push_back(linear_material(1e4, 5e3, 0.0, 1.0));  // no friction, no dashpot
+  int compared = 0;
+  for (ContactPath p : {ContactPath::kBaseline, ContactPath::kAvx2, ContactPath::kAvx512}) {
+    if (!contact_path_supported(p)) continue;
+    SCOPED_TRACE(contact_path_name(p));
+    for (std::size_t m = 0; m < materials.size(); ++m) {
+      SCOPED_TRACE(::testing::Message() << "material " << m);
+      World<D> w;
+      add_material(w, materials[m]);
+      w.resolve_pair_laws();
+      for (int round = 0; round < 20; ++round) expect_kernel_matches_law<D>(w.pair_laws[0], p, rng);
+    }
+    ++compared;
+  }
+  if (compared == 0) GTEST_SKIP() << "no batch path on this processor";
+}
+
+TEST(ContactPaths, ScalarAlwaysRunsAndAnUnsupportedPathIsRefused) {
+  PathGuard guard;
+  EXPECT_TRUE(contact_path_supported(ContactPath::kScalar));
+  EXPECT_TRUE(set_contact_path(ContactPath::kScalar));
+  EXPECT_EQ(contact_path(), ContactPath::kScalar);
+  for (ContactPath p : {ContactPath::kBaseline, ContactPath::kAvx2, ContactPath::kAvx512}) {
+    if (contact_path_supported(p)) continue;
+    EXPECT_FALSE(set_contact_path(p));
+    EXPECT_EQ(contact_path(), ContactPath::kScalar);
+  }
+  EXPECT_TRUE(contact_path_supported(default_contact_path()));
+}
+
+}  // namespace
+}  // namespace geodem::test
