@@ -57,7 +57,9 @@ bool contact_path_supported(ContactPath p) {
 }
 
 ContactPath default_contact_path() {
-  return contact_path_supported(ContactPath::kAvx512) ? ContactPath::kAvx512 : ContactPath::kScalar;
+  for (ContactPath p : {ContactPath::kAvx512, ContactPath::kAvx2})
+    if (contact_path_supported(p)) return p;
+  return ContactPath::kScalar;
 }
 
 ContactPath contact_path() {

@@ -11,7 +11,8 @@
 //
 // One Debian-built binary carries the kernel three times, written once with xsimd and built
 // for the baseline x86-64 (SSE2, two lanes), for AVX2 (four) and for AVX-512 (eight); the
-// step uses the widest the processor has. Elsewhere than on x86-64 the scalar loop runs.
+// step uses AVX-512 or AVX2 where the processor has them, else the scalar loop (as it does
+// on other processors than x86-64).
 #pragma once
 
 #include <cstdint>
@@ -65,10 +66,9 @@ enum class ContactPath {
 const char* contact_path_name(ContactPath p);
 // Whether this build and processor run a path (the scalar loop always).
 bool contact_path_supported(ContactPath p);
-// The path the step uses unless told otherwise: the AVX-512 batches where the processor has
-// them, else the scalar loop. (On a 2-vCPU Xeon with AVX-512 the SSE2 batches were 1.3 to 1.7
-// times slower than the scalar loop and the AVX2 batches 0.97 to 1.13 times its time: see
-// docs/performance.md.)
+// The path the step uses unless told otherwise: the widest batches the processor runs,
+// AVX-512 or AVX2, else the scalar loop: the SSE2 batches were slower than the scalar loop on
+// every case measured (benchmarks/README.md, "The force stage per contact").
 ContactPath default_contact_path();
 // The path the step uses: the environment's GEODEM_CONTACT_PATH (scalar, sse2, avx2 or
 // avx512) if set to a supported one, else the default, until set_contact_path.

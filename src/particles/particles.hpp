@@ -98,7 +98,9 @@ struct Particles {
       else
         v.swap(out);
     };
-    apply(pos), apply(vel), apply(angvel), apply(force), apply(torque), apply(radius);
+    apply(pos), apply(vel), apply(angvel), apply(radius);
+    // The step gives the force and torque arrays back during a list build (world/step.cpp).
+    if (!force.empty()) apply(force), apply(torque);
     apply(inv_mass), apply(inv_inertia), apply(material), apply(flags), apply(pos_at_build);
     if (!orient.empty()) apply(orient);
     apply(id);

@@ -228,7 +228,22 @@ template <int D>
 void step(World<D>& world) {
   {
     ScopedStage<D> t(world, Stage::kNeighbours);
-    if (world.rebuild_needed || list_expired(world)) build_neighbour_list(world);
+    if (world.rebuild_needed || list_expired(world)) {
+      // A build is a run's peak of memory (the old rows and the new ones are both resident).
+      // The forces and torques are set afresh after it: their arrays are given back while it
+      // runs (48 bytes a grain in 3D), unless views of them exist (Python's numpy arrays).
+      auto& P = world.particles;
+      const bool give_back = !P.stable_buffers;
+      if (give_back) {
+        std::vector<typename Dim<D>::Vec>().swap(P.force);
+        std::vector<typename Dim<D>::Rot>().swap(P.torque);
+      }
+      build_neighbour_list(world);
+      if (give_back) {
+        P.force.resize(P.size());
+        P.torque.resize(P.size());
+      }
+    }
   }
   // After the neighbour search, so that the first automatic step sees the contacts.
   if (world.dt <= 0.0 || (world.auto_dt && world.step % world.dt_update_interval == 0)) {
