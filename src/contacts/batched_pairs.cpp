@@ -80,6 +80,7 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
   // Zeroed once: the lanes a kernel computes beyond the batch's end then index grain 0 and
   // pair 0, or an earlier contact.
   ContactBatch<D> batch{};
+  batch.overlap_limit = overlap_limit;
   const BatchGrains grains{doubles(P.pos),    doubles(P.vel),    doubles(P.angvel), radius,
                            P.inv_mass.data(), doubles(L.spring), share != nullptr};
   int n = 0;
@@ -108,9 +109,11 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
         close_row();
         open_row = i;
       }
-      const double ri = radius[i], rj = radius[j], delta = batch.delta[c];
-      if (delta > overlap_limit * std::min(ri, rj)) [[unlikely]]
-        t.note_overlap(i, static_cast<std::int64_t>(j), delta / std::min(ri, rj));
+      const double delta = batch.delta[c];
+      if (batch.overlap_seen) [[unlikely]] {
+        const double m = std::min(radius[i], radius[j]);
+        if (delta > overlap_limit * m) t.note_overlap(i, static_cast<std::int64_t>(j), delta / m);
+      }
       Vec f, d;
       Rot tqi, tj;
       for (int a = 0; a < D; ++a) {
@@ -135,6 +138,7 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
         crossing.push({f, tj, j});
       }
       const double fn = batch.fn[c];
+      [[maybe_unused]] const double ri = radius[i], rj = radius[j];  // for the sums below
       if constexpr (Periodic) {
         const Vec nrm = d * (1.0 / std::sqrt(d.squaredNorm()));
         if constexpr (!kFabricByGrain<D>) {
@@ -155,6 +159,7 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
     n = 0;
   };
 
+  const bool one_material = nmat == 1;
   for (std::size_t i = first; i < last; ++i) {
     const std::uint32_t b = start[i], e = start[i + 1];
     if (b == e) continue;
@@ -177,7 +182,7 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
       // Apart: the history ends (written only when there is one, to spare stores; the
       // conditions are combined without a jump).
       if (apart & (spring_norm2<D>(spring[k]) != 0.0)) spring[k] = unloaded_spring<D>();
-      const PairLaw* pair_law = laws + material[j];
+      const PairLaw* pair_law = one_material ? laws : laws + material[j];
       if (!apart & (pair_law != law)) [[unlikely]] {
         if (n > 0) add_batch();
         law = pair_law;

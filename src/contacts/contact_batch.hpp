@@ -30,6 +30,8 @@ struct ContactBatch {
   alignas(64) std::int64_t k[kSize];
   // In with clumps: how many contacts share the collision (their dashpots split the mass).
   alignas(64) double share[kSize];
+  // In: the overlap, as a fraction of the smaller radius, beyond which the step stops.
+  double overlap_limit = 0.0;
   // The branch d = x_j - x_i: out in a box; in a periodic cell an input with the image's shift,
   // as is the affine field's part L d of the relative velocity.
   alignas(64) double d[D][kSize];
@@ -41,6 +43,8 @@ struct ContactBatch {
   alignas(64) double tj[kRot][kSize];
   alignas(64) double fn[kSize];
   alignas(64) double delta[kSize];
+  // Out: some contact of the batch overlaps beyond the limit.
+  bool overlap_seen = false;
 };
 
 // The grains' state as the kernels read it (world/particles.hpp: arrays of D-vectors, of

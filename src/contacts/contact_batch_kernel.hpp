@@ -79,6 +79,10 @@ inline void kernel(const BatchLaw& law, const BatchGrains& g, double dt, Contact
   const V gstar(law.gstar), vdt(dt);
   const V four_thirds_estar = V(4.0 / 3.0) * estar, eight_gstar = V(8.0) * gstar;
   const V two_estar = two * estar, two_beta = two * beta;
+  const V overlap_limit(b.overlap_limit);
+  alignas(64) static constexpr double kLane[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  const V lane = V::load_aligned(kLane);
+  auto overlapping = xsimd::batch_bool<double, A>(false);
   auto load = [](const double* p) { return V::load_aligned(p); };
   // Component a of D-vector (or spin) number `index` of an array of them.
   auto gather_part = [](const double* base, const I& index, int a) {
@@ -215,7 +219,10 @@ inline void kernel(const BatchLaw& law, const BatchGrains& g, double dt, Contact
     for (int a = 0; a < D; ++a) f[a].store_aligned(b.f[a] + c);
     fn.store_aligned(b.fn + c);
     delta.store_aligned(b.delta + c);
+    const auto live = lane < V(static_cast<double>(n - c));
+    overlapping = overlapping | (live & (delta > overlap_limit * xsimd::select(rj < ri, rj, ri)));
   }
+  b.overlap_seen = xsimd::any(overlapping);
 }
 
 template <class A, int D, bool Periodic>

@@ -9,14 +9,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <random>
 #include <string>
 #include <utility>
 
+#include "broadphase/neighbour_search.hpp"
 #include "clumps/clump_template.hpp"
 #include "contacts/contact_batch.hpp"
+#include "contacts/contact_forces.hpp"
 #include "contacts/contact_law.hpp"
 #include "pressed_packing.hpp"
 
@@ -301,6 +304,38 @@ TYPED_TEST(ContactBatches, KernelsGiveTheScalarLawsBitsOnRandomContacts) {
     ++compared;
   }
   if (compared == 0) GTEST_SKIP() << "no batch path on this processor";
+}
+
+// The overlap that stops a run is the first in list order beyond the limit, on every path.
+TYPED_TEST(ContactBatches, EveryPathNotesTheSameRunawayOverlap) {
+  constexpr int D = TypeParam::value;
+  PathGuard guard;
+  auto noted = [](ContactPath p) {
+    EXPECT_TRUE(set_contact_path(p));
+    World<D> w;
+    add_material(w, linear_material(1e4, 5e3, 0.5, 0.5));
+    w.resolve_pair_laws();
+    w.overlap_limit = 0.3;
+    // Pairs along x, 3 mm apart: overlaps of 10, 40 and 50 % of the radius (1 mm).
+    for (int p2 = 0; p2 < 3; ++p2) {
+      const double x = 3e-3 * p2, gap = std::array<double, 3>{1.9e-3, 1.6e-3, 1.5e-3}[p2];
+      w.particles.add(vec<D>(x, 0.0, 0.0), 1e-3, 2600.0, 0);
+      w.particles.add(vec<D>(x, gap, 0.0), 1e-3, 2600.0, 0);
+    }
+    w.dt = 1e-6;
+    build_neighbour_list(w);
+    compute_contact_forces(w);
+    return std::array<double, 3>{static_cast<double>(w.overlap_offender),
+                                 static_cast<double>(w.overlap_partner), w.overlap_ratio};
+  };
+  const auto scalar = noted(ContactPath::kScalar);
+  EXPECT_GE(scalar[0], 0.0);
+  EXPECT_NEAR(scalar[2], 0.4, 1e-12);
+  for (ContactPath p : {ContactPath::kBaseline, ContactPath::kAvx2, ContactPath::kAvx512}) {
+    if (!contact_path_supported(p)) continue;
+    SCOPED_TRACE(contact_path_name(p));
+    EXPECT_EQ(noted(p), scalar);
+  }
 }
 
 TEST(ContactPaths, ScalarAlwaysRunsAndAnUnsupportedPathIsRefused) {
