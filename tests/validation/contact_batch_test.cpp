@@ -17,10 +17,10 @@
 #include <utility>
 
 #include "broadphase/neighbour_search.hpp"
-#include "clumps/clump_template.hpp"
 #include "contacts/contact_batch.hpp"
 #include "contacts/contact_forces.hpp"
 #include "contacts/contact_law.hpp"
+#include "moving_worlds.hpp"
 #include "pressed_packing.hpp"
 
 namespace geodem::test {
@@ -77,50 +77,19 @@ World<D> pressed(Case c) {
   return w;
 }
 
-template <int D>
-World<D> clumps() {
-  World<D> w;
-  const auto mat = add_material(w, modulus_material(1e7, 0.5, 0.5, 0.5));
-  w.resolve_pair_laws();
-  ClumpTemplate<D> shape;
-  shape.centre = {Vec<D>::Zero(), Vec<D>(1.8 * axis<D>(0)),
-                  Vec<D>(0.9 * axis<D>(0) + 1.4 * axis<D>(1))};
-  shape.radius = {1.0, 1.0, 0.8};
-  std::mt19937_64 rng(9);
-  throw_clumps_together(w, resolve_clump(shape),
-                        D == 2 ? std::array<int, 3>{24, 20, 1} : std::array<int, 3>{7, 7, 7}, 0.05,
-                        0.0005, 30.0, mat, rng);
-  w.local_damping = 0.2;
-  w.dt = 1e-5;
-  w.sort_interval = 2;
-  return w;
-}
-
-template <int D>
-World<D> periodic() {
-  const double r = 1e-3, spacing = 2.1e-3, kn = D == 2 ? 1e6 : 1e4;
-  const int side = D == 2 ? 40 : 12;
-  const Vec<D> size = Vec<D>::Constant(side * spacing);
-  World<D> w;
-  add_material(w, linear_material(kn, 0.5 * kn, 0.5, 0.7, 2600.0));
-  w.resolve_pair_laws();
-  w.cell.periodic = true;
-  w.cell.h = size.asDiagonal();
-  w.cell.vel_grad(0, 1) = 20.0;
-  w.sort_interval = 2;
-  std::mt19937_64 rng(5);
-  fill_lattice(w, Vec<D>(Vec<D>::Zero()), size, spacing, 0.8 * r, r, 0.04 * r, 2.0, 2600.0, 0, rng);
-  w.dt = 1e-6;
-  return w;
-}
-
 // The state after the run, and the most grain-grain contacts measured along it.
 template <int D>
 std::pair<World<D>, std::size_t> run(Case c, ContactPath path) {
   EXPECT_TRUE(set_contact_path(path));
-  World<D> w = c == Case::kClumps     ? clumps<D>()
-               : c == Case::kPeriodic ? periodic<D>()
-                                      : pressed<D>(c);
+  World<D> w;
+  if (c == Case::kClumps) {
+    w = colliding_clumps<D>(D == 2 ? std::array<int, 3>{24, 20, 1} : std::array<int, 3>{7, 7, 7},
+                            0.5);
+  } else if (c == Case::kPeriodic) {
+    w = sheared_cell<D>(D == 2 ? 40 : 12);
+  } else {
+    w = pressed<D>(c);
+  }
   const int steps = c == Case::kClumps ? 1200 : 300;
   std::size_t most = 0;
   for (int k = 0; k < steps; ++k) {
@@ -132,22 +101,11 @@ std::pair<World<D>, std::size_t> run(Case c, ContactPath path) {
   return {std::move(w), most};
 }
 
-template <typename T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
 template <int D>
 void expect_identical(const World<D>& a, const World<D>& b) {
-  EXPECT_TRUE(same_bits(a.particles.pos, b.particles.pos));
-  EXPECT_TRUE(same_bits(a.particles.vel, b.particles.vel));
-  EXPECT_TRUE(same_bits(a.particles.angvel, b.particles.angvel));
+  expect_same_grains(a, b);
   EXPECT_TRUE(same_bits(a.particles.force, b.particles.force));
   EXPECT_TRUE(same_bits(a.particles.torque, b.particles.torque));
-  EXPECT_TRUE(same_bits(a.particles.id, b.particles.id));
-  EXPECT_TRUE(same_bits(a.nlist.other, b.nlist.other));
-  EXPECT_TRUE(same_bits(a.nlist.spring, b.nlist.spring));
   for (std::size_t k = 0; k < a.walls.size(); ++k) {
     EXPECT_TRUE(a.walls[k].force == b.walls[k].force) << "wall " << k;
   }

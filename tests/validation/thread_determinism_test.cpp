@@ -16,6 +16,7 @@
 #include "base/parallel.hpp"
 #include "clumps/clump_dynamics.hpp"
 #include "clumps/clump_template.hpp"
+#include "moving_worlds.hpp"
 #include "pressed_packing.hpp"
 
 namespace geodem::test {
@@ -41,22 +42,6 @@ World<D> run(bool extras, int threads) {
     step(w);
   }
   return w;
-}
-
-template <typename T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
-// The grains' state, their numbering and the listed pairs with their springs.
-template <int D>
-void expect_same_grains(const World<D>& a, const World<D>& b) {
-  EXPECT_TRUE(same_bits(a.particles.pos, b.particles.pos));
-  EXPECT_TRUE(same_bits(a.particles.vel, b.particles.vel));
-  EXPECT_TRUE(same_bits(a.particles.angvel, b.particles.angvel));
-  EXPECT_TRUE(same_bits(a.particles.id, b.particles.id));
-  EXPECT_TRUE(same_bits(a.nlist.other, b.nlist.other));
-  EXPECT_TRUE(same_bits(a.nlist.spring, b.nlist.spring));
 }
 
 template <int D>
@@ -101,20 +86,8 @@ TYPED_TEST(ThreadDeterminism, OneTwoAndThreeThreadsGiveTheSameBits) {
 
 template <int D>
 World<D> run_periodic(int threads) {
-  const double r = 1e-3, spacing = 2.1e-3, kn = D == 2 ? 1e6 : 1e4;
-  const int side = D == 2 ? 100 : 22;
-  const Vec<D> size = Vec<D>::Constant(side * spacing);
-  World<D> w;
-  add_material(w, linear_material(kn, 0.5 * kn, 0.5, 0.7, 2600.0));
-  w.resolve_pair_laws();
-  w.cell.periodic = true;
-  w.cell.h = size.asDiagonal();
-  w.cell.vel_grad(0, 1) = 20.0;
-  w.sort_interval = 2;
+  World<D> w = sheared_cell<D>(D == 2 ? 100 : 22);
   w.threads = threads;
-  std::mt19937_64 rng(5);
-  fill_lattice(w, Vec<D>(Vec<D>::Zero()), size, spacing, 0.8 * r, r, 0.04 * r, 2.0, 2600.0, 0, rng);
-  w.dt = 1e-6;
   for (int k = 0; k < 300; ++k) {
     w.measure_this_step = k % 25 == 0;
     step(w);
@@ -142,23 +115,8 @@ TYPED_TEST(ThreadDeterminism, PeriodicCellGivesTheSameBitsOnOneTwoAndThreeThread
 
 template <int D>
 World<D> run_clumps(int threads) {
-  World<D> w;
-  const auto mat = add_material(w, modulus_material(1e7, 0.5, 0.5, 1.0));
-  w.resolve_pair_laws();
-  ClumpTemplate<D> shape;
-  // Three members: the sums over a clump's members then depend on their order.
-  shape.centre = {Vec<D>::Zero(), Vec<D>(1.8 * axis<D>(0)),
-                  Vec<D>(0.9 * axis<D>(0) + 1.4 * axis<D>(1))};
-  shape.radius = {1.0, 1.0, 0.8};
-  const auto t = resolve_clump(shape);
-  std::mt19937_64 rng(9);
-  // Created in an order unrelated to the cells, so that the first build renumbers them.
-  throw_clumps_together(w, t,
-                        D == 2 ? std::array<int, 3>{64, 48, 1} : std::array<int, 3>{14, 14, 14},
-                        0.05, 0.0005, 30.0, mat, rng);
-  w.local_damping = 0.2;
-  w.dt = 1e-5;
-  w.sort_interval = 2;
+  World<D> w = colliding_clumps<D>(
+      D == 2 ? std::array<int, 3>{64, 48, 1} : std::array<int, 3>{14, 14, 14}, 1.0);
   w.threads = threads;
   for (int k = 0; k < 1000; ++k) {
     w.measure_this_step = k % 25 == 0;
