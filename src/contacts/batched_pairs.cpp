@@ -54,6 +54,19 @@ BatchLaw batch_law_of(const PairLaw& p) {
 
 }  // namespace
 
+bool batch_kernel_has(const std::vector<PairLaw>& laws) {
+  return std::all_of(laws.begin(), laws.end(), [](const PairLaw& p) {
+    // No default: a new law makes the compiler warn here (an error in CI builds) until the
+    // kernel has its formulas or this returns false for it.
+    switch (p.law) {
+      case LawKind::kLinear:
+      case LawKind::kHertz:
+        return true;
+    }
+    return false;
+  });
+}
+
 template <int D, bool Measure, bool Periodic>
 void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D>& t,
                        typename SlabCrossings<SlabCrossing<D>>::Writer crossing) {

@@ -3,12 +3,17 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "base/parallel.hpp"
 #include "contacts/slab_tally.hpp"
 #include "world/world.hpp"
 
 namespace geodem {
+
+// Whether the batch kernel has the formulas of every one of these laws (else the scalar loop
+// runs).
+bool batch_kernel_has(const std::vector<PairLaw>& laws);
 
 // Forces of the grain-grain contacts listed in the rows [first, last), added to the grains in
 // the order of the scalar loop (contacts/contact_forces.cpp), with the same bits.

@@ -209,7 +209,7 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   auto& crossing = world.slab_crossing;
   crossing.prepare(world.particles.size());
   // Contacts without extras run in batches unless the scalar loop is asked for.
-  const bool batched = contact_path() != ContactPath::kScalar;
+  const bool batched = contact_path() != ContactPath::kScalar && batch_kernel_has(world.pair_laws);
   for_slabs(
       world.particles.size(), world.threads,
       [&](std::size_t s, std::size_t first, std::size_t last) {
