@@ -253,6 +253,11 @@ def plot_pullout(out, summary, h):
         ax.set_title("Pull-out test")
         save(fig, out, "pullout.png", made)
 
+    if "runout_carried" in h and u:
+        from geodem_plot_sheet_parts import plot_sheet_parts
+        plot_sheet_parts(plt, out, save, [{k: np.array(v) for k, v in h.items()}],
+                         results.get("sheet_parts", {}).get("slip_estimate"), made)
+
     profiles = read_state(out / "tension_profiles.csv")
     if profiles and profiles.get("s"):
         # Rows are grouped by pulled-end displacement; keep the order of the file.

@@ -2,12 +2,16 @@
 
 pullout_seeds.png: every seed's tension against the pull, their mean, and the design
 estimates (one panel per grain size); pullout_refinement.png: the mean capacity against
-d50 / cover, with its spread over the seeds and the fit extrapolated to fine grains.
+d50 / cover, with its spread over the seeds and the fit extrapolated to fine grains;
+pullout_sheet_parts.png: the tension each part of the sheet takes off, averaged over the
+seeds (geodem_plot_sheet_parts.py).
 """
 import csv
+import json
 
 import matplotlib.pyplot as plt
 import numpy as np
+from geodem_plot_sheet_parts import plot_sheet_parts
 
 
 def read_columns(path):
@@ -53,6 +57,16 @@ def plot_pullout_series(out, summary, save):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     save(fig, out, "pullout_seeds.png", made)
+
+    # The parts of the sheet, averaged over the first grain size's seeds.
+    first = [out / "runs" / r / "history.csv" for r in groups[0]["runs"]]
+    runs = [out / "runs" / r / "summary.json" for r in groups[0]["runs"]]
+    estimate = None
+    if runs and runs[0].is_file():
+        estimate = json.loads(runs[0].read_text())["results"].get("sheet_parts", {}).get(
+            "slip_estimate")
+    plot_sheet_parts(plt, out, save, [read_columns(p) for p in first if p.is_file()], estimate,
+                     made, "pullout_sheet_parts.png")
 
     ref = summary["results"].get("refinement")
     if ref and len(groups) > 1:

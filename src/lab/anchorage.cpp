@@ -71,15 +71,16 @@ AnchorEstimate anchor_resistance(const AnchorGeometry& g, double unit_weight, do
   AnchorEstimate e;
   e.K = K;
   e.sigma_v0 = unit_weight * g.cover + surcharge;
-  e.runout = 2.0 * adhesion * g.runout_length +
-             2.0 * tan_phi * (runout_load >= 0.0 ? runout_load : g.runout_length * e.sigma_v0);
+  e.runout_normal = 2.0 * (runout_load >= 0.0 ? runout_load : g.runout_length * e.sigma_v0);
+  e.runout = 2.0 * adhesion * g.runout_length + tan_phi * e.runout_normal;
   if (g.shape != "runout") {
     const double half = g.shape == "V" ? 0.5 * g.trench_width : 0.0;
     const double l = std::hypot(half, g.trench_depth);
     const double sinb = g.trench_depth / l, cosb = half / l;
     const double beta = std::atan2(g.trench_depth, half);
-    e.trench = 2.0 * adhesion * l + 2.0 * tan_phi * (cosb * cosb + K * sinb * sinb) *
-                                        (e.sigma_v0 * l + 0.5 * unit_weight * l * l * sinb);
+    e.trench_normal =
+        2.0 * (cosb * cosb + K * sinb * sinb) * (e.sigma_v0 * l + 0.5 * unit_weight * l * l * sinb);
+    e.trench = 2.0 * adhesion * l + tan_phi * e.trench_normal;
     if (capstan) e.capstan = std::exp(beta * tan_phi);
   }
   e.tension = e.runout + e.capstan * e.trench;

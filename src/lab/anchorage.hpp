@@ -48,6 +48,9 @@ struct AnchorEstimate {
   double capstan = 1.0;  // exp(beta tan(phi)), or 1
   double sigma_v0 = 0.0;
   double K = 0.0;
+  // The normal forces the estimate assumes on both faces: 2 x load on the run-out, and
+  // F2's 2 (cos^2 beta + K sin^2 beta) (sigma_v0 l + gamma l^2 sin(beta) / 2) beyond the bend.
+  double runout_normal = 0.0, trench_normal = 0.0;
 };
 AnchorEstimate anchor_resistance(const AnchorGeometry& g, double unit_weight, double surcharge,
                                  double tan_phi, double adhesion, double K, double runout_load,

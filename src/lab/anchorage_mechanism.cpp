@@ -41,7 +41,7 @@ Mechanism classify_mechanism(double soil_ratio, double sheet_slip_ratio) {
   Mechanism m;
   m.soil_ratio = soil_ratio;
   m.sheet_slip_ratio = sheet_slip_ratio;
-  m.name = soil_ratio < 0.05 && sheet_slip_ratio > 0.5 ? "slippage" : "soil_deformation";
+  m.name = soil_ratio < 0.05 && sheet_slip_ratio > 0.5 ? "slippage" : "soil_mass";
   return m;
 }
 

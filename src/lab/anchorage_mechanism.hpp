@@ -28,7 +28,7 @@ double mean_embedded_node_displacement(const World<2>& w,
 struct Mechanism {
   double soil_ratio = 0.0;
   double sheet_slip_ratio = 1.0;
-  std::string name;  // "slippage" or "soil_deformation"
+  std::string name;  // "slippage" or "soil_mass"
 };
 
 // Slippage: the anchoring soil moved less than 5 % of the pull, and the grains next to

@@ -15,6 +15,33 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kGravity = 9.81;
 constexpr std::size_t kBackWall = 2;  // in World::walls (floor, front, back)
+// A row of the sheet's parts: per part the tension it took off the sheet, the grains'
+// normal force on it and their ratio (the bend: the tension ratio across it).
+nlohmann::json sheet_parts_json(const SheetPartLoads& p) {
+  auto part = [&](std::size_t k) {
+    return nlohmann::json{
+        {"carried", p.carried[k]}, {"normal", p.normal[k]}, {"mobilised", p.mobilised(k)}};
+  };
+  nlohmann::json bend = part(kBendPart);
+  bend["tension_ratio"] = p.bend_ratio();
+  return {{"runout", part(kRunoutPart)}, {"bend", bend}, {"trench", part(kTrenchPart)}};
+}
+
+// The same terms as the slippage estimate assumes them: F1 on the run-out's at-rest load,
+// the capstan factor at the bend, F2 on the trench part's at-rest normal force.
+nlohmann::json estimate_parts_json(const AnchorEstimate& e) {
+  auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
+  return {{"runout",
+           {{"carried", e.runout},
+            {"normal", e.runout_normal},
+            {"mobilised", ratio(e.runout, e.runout_normal)}}},
+          {"bend", {{"carried", (e.capstan - 1.0) * e.trench}, {"tension_ratio", e.capstan}}},
+          {"trench",
+           {{"carried", e.trench},
+            {"normal", e.trench_normal},
+            {"mobilised", ratio(e.trench, e.trench_normal)}}}};
+}
+
 }  // namespace
 
 void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0, double top,
@@ -77,6 +104,13 @@ void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0,
   u.t_max = u.d_at_max = u.soil_at_max = u.displacement = 0.0;
   u.soil_median_at_max = u.near_at_max = u.nodes_at_max = 0.0;
   u.pull_start = w.step;
+  // The bend: the sheet's second corner (the end of the run-out), where an L or V turns.
+  const auto corners = sheet_corners(s.anchor, y0 + 0.5 * s.thickness);
+  u.has_corner = corners.size() > 2 ? 1 : 0;
+  u.corner = corners[1];
+  u.corner_band = std::max(2.0 * s.radius, s.element_length);
+  u.parts_sum = u.parts_first = u.parts_at_max = SheetPartLoads{};
+  u.parts_first_set = 0;
 }
 
 double anchoring_soil_displacement(const Pull& u, const World<2>& w, bool median,
@@ -115,7 +149,7 @@ void pull_results(const Pull& u, const World<2>& w, const PulloutSettings& s,
   const bool slip_governs = u.est.tension <= u.est_soil.tension;
   const double design = slip_governs ? u.est.tension : u.est_soil.tension;
   results["T_design"] = design;
-  results["design_mechanism"] = slip_governs ? "slippage" : "soil_deformation";
+  results["design_mechanism"] = slip_governs ? "slippage" : "soil_mass";
   results["T_max_over_analytic"] = u.est.tension > 0.0 ? u.t_max / u.est.tension : 0.0;
   results["T_max_over_design"] = design > 0.0 ? u.t_max / design : 0.0;
   const Mechanism m =
@@ -143,6 +177,9 @@ void pull_results(const Pull& u, const World<2>& w, const PulloutSettings& s,
                          {"runout_friction", u.est.runout},
                          {"trench_friction", u.est.trench},
                          {"capstan_factor", u.est.capstan}};
+  results["sheet_parts"] = {{"at_T_max", sheet_parts_json(u.parts_at_max)},
+                            {"at_start", sheet_parts_json(u.parts_first)},
+                            {"slip_estimate", estimate_parts_json(u.est)}};
 }
 
 void write_pullout_states(const std::string& path_grains, const std::string& path_sheet,

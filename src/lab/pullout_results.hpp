@@ -9,6 +9,7 @@
 
 #include "lab/anchorage.hpp"
 #include "lab/pullout_settings.hpp"
+#include "lab/sheet_parts.hpp"
 #include "world/world.hpp"
 
 namespace geodem {
@@ -36,6 +37,13 @@ struct Pull {
   double t_max = 0.0, d_at_max = 0.0, soil_at_max = 0.0, displacement = 0.0;
   double soil_median_at_max = 0.0, near_at_max = 0.0, nodes_at_max = 0.0;
   std::uint64_t pull_start = 0;
+  // The sheet's parts (lab/sheet_parts.hpp): the bend's corner (none for a run-out) and its
+  // band; the sums of the current row, the first row's means and those of T_max's row.
+  std::uint8_t has_corner = 0;
+  Dim<2>::Vec corner = Dim<2>::Vec::Zero();
+  double corner_band = 0.0;
+  SheetPartLoads parts_sum, parts_first, parts_at_max;
+  std::uint8_t parts_first_set = 0;
 
   template <class Archive>
   void visit(Archive& a) {
@@ -44,6 +52,25 @@ struct Pull {
         a(next_record);
     a(tension_sum), a(tension_steps), a(t_max), a(d_at_max), a(soil_at_max), a(displacement);
     a(soil_median_at_max), a(near_at_max), a(nodes_at_max), a(pull_start);
+    a(has_corner), a(corner), a(corner_band), a(parts_sum), a(parts_first), a(parts_at_max);
+    a(parts_first_set);
+  }
+
+  // Adds a step of the pull to the row's sums: the clamp's tension and the sheet's parts.
+  void add_step(const World<2>& w) {
+    tension_sum += w.spars.tension[0];
+    parts_sum +=
+        sheet_part_loads(w.spars, has_corner ? std::optional(corner) : std::nullopt, corner_band);
+    ++tension_steps;
+  }
+  // Ends a row: its mean tension (returned) and parts over the steps since the previous row,
+  // since the per-step values carry the sheet's own vibrations; the sums start again.
+  double end_row(SheetPartLoads& parts) {
+    const double n = static_cast<double>(tension_steps), T = tension_sum / n;
+    parts = parts_sum.scaled(1.0 / n);
+    if (!parts_first_set) parts_first = parts, parts_first_set = 1;
+    tension_sum = 0.0, parts_sum = SheetPartLoads{}, tension_steps = 0;
+    return T;
   }
 };
 
@@ -61,7 +88,13 @@ inline const std::vector<std::string> kHistoryColumns = {"step",
                                                          "unbalanced",
                                                          "sheet_contacts",
                                                          "near_sheet_displacement",
-                                                         "sheet_displacement"};
+                                                         "sheet_displacement",
+                                                         "runout_carried",
+                                                         "runout_normal",
+                                                         "bend_carried",
+                                                         "bend_normal",
+                                                         "trench_carried",
+                                                         "trench_normal"};
 inline const std::vector<std::string> kProfileColumns = {"displacement", "s", "tension"};
 
 // The pull's state when the preparation ends (grain ids equal to their indices): the

@@ -339,12 +339,14 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
   run.history.open(opt.out_dir + "/history.csv", history_columns());
   nlohmann::json tests = nlohmann::json::array();
   std::vector<double> sn, peak, residual;
+  double stiffness_sum = 0.0;
   for (run.test = 0; run.test < s.normal_stress.size(); ++run.test) {
     tests.push_back(run.run_test(s.normal_stress[run.test]));
     const auto& t = tests.back();
     sn.push_back(t["normal_stress"].get<double>());
     peak.push_back(t["peak_shear_stress"].get<double>());
     residual.push_back(t["residual_shear_stress"].get<double>());
+    stiffness_sum += t["shear_stiffness"].get<double>();
   }
   run.progress.finish();
   const InterfaceEnvelope ep = fit_interface_envelope(sn, peak);
@@ -357,6 +359,11 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
   results["interface_adhesion_residual"] = er.adhesion;
   results["peak_envelope"] = envelope_json(ep);
   results["residual_envelope"] = envelope_json(er);
+  // The contract's names: the peak envelope, and the secant stiffness averaged over the
+  // normal stresses (each test's own is in `tests`).
+  results["interface_phi_deg"] = ep.friction_deg;
+  results["interface_adhesion"] = ep.adhesion;
+  results["interface_stiffness"] = stiffness_sum / static_cast<double>(sn.size());
   results["tests"] = tests;
   results["deposit_grains"] = run.deposit.particles.size();
   if (!cache_use.empty()) results["deposit_cache"] = cache_use;

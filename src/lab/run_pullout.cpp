@@ -398,26 +398,25 @@ struct Pullout {
     auto& S = w.spars;
     Pull& u = pull;
     u.displacement = u.clamp0.x() - S.pos[0].x();
-    u.tension_sum += S.tension[0];
-    ++u.tension_steps;
+    u.add_step(w);
     // The last row is always written, even when a change of dt made the prediction miss it.
     if (w.measure_this_step || u.displacement >= s.max_displacement) {
-      // The tension of a row is its mean over the steps since the previous row: the
-      // per-step value carries the sheet's own vibrations.
-      const double T = u.tension_sum / static_cast<double>(u.tension_steps);
+      SheetPartLoads parts;
+      const double T = u.end_row(parts);
       const double soil = anchoring_soil_displacement(u, w, false, moved),
                    median = anchoring_soil_displacement(u, w, true, moved);
       const double near = mean_grain_displacement(w, u.near, u.start);
       const double nodes = mean_embedded_node_displacement(w, u.node_start);
       history.row({static_cast<double>(w.step), w.time, u.displacement, T, S.tension[0], soil,
                    median, kinetic_energy(w), unbalanced_force_ratio(w),
-                   static_cast<double>(w.stats.spar_contacts), near, nodes});
+                   static_cast<double>(w.stats.spar_contacts), near, nodes,
+                   parts.carried[kRunoutPart], parts.normal[kRunoutPart], parts.carried[kBendPart],
+                   parts.normal[kBendPart], parts.carried[kTrenchPart], parts.normal[kTrenchPart]});
       if (T > u.t_max) {
         u.t_max = T, u.d_at_max = u.displacement, u.soil_at_max = soil;
         u.soil_median_at_max = median, u.near_at_max = near, u.nodes_at_max = nodes;
+        u.parts_at_max = parts;
       }
-      u.tension_sum = 0.0;
-      u.tension_steps = 0;
       while (u.next_record <= u.displacement) u.next_record += d_record;
       progress.update("pull", w.step, w.time, u.displacement / s.max_displacement,
                       "T " + format_sig(T) + " N/m");

@@ -51,6 +51,10 @@ struct SparChains {
   std::vector<std::uint32_t> chain_of;
   std::vector<double> rest_turn;  // 2D bending: rest angle from this element to `next`
   std::vector<double> tension;    // result of the current step (N/m in 2D)
+  // Sum of the normal forces of the grains touching each element this step (both faces;
+  // N/m in 2D): what a pull-out reads to split the tension among the sheet's parts.
+  // Recomputed every step, so not part of a checkpoint.
+  std::vector<double> contact_normal;
   std::vector<Chain> chains;
 
   std::size_t nodes() const { return pos.size(); }

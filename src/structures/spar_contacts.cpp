@@ -40,6 +40,7 @@ void compute_spar_contacts(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   auto& S = world.spars;
   for (auto& f : S.force) f.setZero();
+  S.contact_normal.assign(S.elements(), 0.0);
   auto& P = world.particles;
   auto& L = world.nlist;
   if (S.empty() || L.spar_start.size() != P.size() + 1) return;
@@ -82,6 +83,7 @@ void compute_spar_contacts(World<D>& world) {
       const Vec f =
           contact_force<D>(law, ri, wall_partner_radius(law, ri), P.inv_mass[i] + inv_m_el, nrm,
                            delta, vrel, dt, L.spar_spring[k], fn);
+      S.contact_normal[el] += std::max(fn, 0.0);
       S.force[na] += wa * f;
       S.force[nb] += wb * f;
       P.force[i] -= f;

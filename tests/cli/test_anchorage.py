@@ -50,6 +50,13 @@ class AnchorageTest(unittest.TestCase):
               f" deg (residual {res['interface_friction_residual_deg']:.3f})")
         self.assertAlmostEqual(res["interface_friction_residual_deg"], 25.0, delta=0.5)
         self.assertAlmostEqual(res["interface_adhesion_residual"], 0.0, delta=300.0)
+        # The contract's names: the peak envelope and the mean secant stiffness.
+        self.assertEqual(res["interface_phi_deg"], res["interface_friction_peak_deg"])
+        self.assertEqual(res["interface_adhesion"], res["interface_adhesion_peak"])
+        stiffness = [t["shear_stiffness"] for t in res["tests"]]
+        self.assertAlmostEqual(res["interface_stiffness"], sum(stiffness) / len(stiffness),
+                               delta=1e-9 * max(stiffness))
+        self.assertGreater(res["interface_stiffness"], 0.0)
         for t in res["tests"]:
             self.assertLess(t["servo_error_max"], 0.01)
             self.assertAlmostEqual(t["normal_stress"] / t["normal_stress_target"], 1.0, delta=0.01)

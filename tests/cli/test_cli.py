@@ -375,6 +375,19 @@ create = "initial"
                 self.assertEqual((a / f).read_bytes(), (b / f).read_bytes(), f)
 
         plain, res = go("plain")
+        # The sheet's parts telescope: what run-out, bend and trench part take off the
+        # sheet sums to the clamp's tension, row by row.
+        with open(plain / "history.csv") as f:
+            for row in csv.DictReader(f):
+                parts = sum(float(row[p + "_carried"]) for p in ("runout", "bend", "trench"))
+                self.assertAlmostEqual(parts, float(row["tension"]),
+                                       delta=1e-9 * abs(float(row["tension"])) + 1e-9)
+        at_max = res["sheet_parts"]["at_T_max"]
+        self.assertGreater(at_max["trench"]["normal"], 0.0)
+        self.assertAlmostEqual(sum(at_max[p]["carried"] for p in ("runout", "bend", "trench")),
+                               res["T_max"], delta=1e-9 * res["T_max"])
+        self.assertAlmostEqual(res["sheet_parts"]["slip_estimate"]["bend"]["tension_ratio"],
+                               res["analytic"]["capstan_factor"])
         stored, res_stored = go("stored", "--set", cache)
         loaded, res_loaded = go("loaded", "--set", cache)
         self.assertTrue(res_stored["preparation"]["deposit_cache"].startswith("stored "))
@@ -410,6 +423,11 @@ create = "initial"
         self.assertGreater(len(rows), 100)
         self.assertTrue(all(float(r["tension"]) >= 0.0 for r in rows))
         self.assertAlmostEqual(float(rows[-1]["displacement"]), 0.03, delta=1e-3)
+        # A run-out has no bend: the whole tension comes off the run-out part.
+        for row in rows:
+            self.assertAlmostEqual(float(row["runout_carried"]), float(row["tension"]),
+                                   delta=1e-9 * abs(float(row["tension"])) + 1e-9)
+            self.assertEqual(float(row["bend_carried"]) + float(row["trench_carried"]), 0.0)
         for name in ("pullout.png", "tension_profiles.png", "pullout_initial.png",
                      "pullout_final.png", "tension_profiles.csv", "states/grains_final.csv",
                      "states/sheet_initial.csv"):

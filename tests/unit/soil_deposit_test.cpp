@@ -54,8 +54,8 @@ TEST(AnchorageMechanism, MeasuresAndClassification) {
   // Nodes inside the box (x > 0 at the start): two of three, each moved 20 mm.
   EXPECT_NEAR(mean_embedded_node_displacement(w, nodes), 0.02, 1e-15);
   EXPECT_EQ(classify_mechanism(0.049, 0.51).name, "slippage");
-  EXPECT_EQ(classify_mechanism(0.051, 0.9).name, "soil_deformation");
-  EXPECT_EQ(classify_mechanism(0.01, 0.49).name, "soil_deformation");
+  EXPECT_EQ(classify_mechanism(0.051, 0.9).name, "soil_mass");
+  EXPECT_EQ(classify_mechanism(0.01, 0.49).name, "soil_mass");
 }
 
 }  // namespace
