@@ -36,6 +36,7 @@ InterfaceTest interface_test(const InterfaceCurve& c, double residual_from) {
   t.peak_shear = c.shear[ipeak];
   t.displacement_at_peak = c.displacement[ipeak];
   t.peak_ratio = c.normal[ipeak] > 0.0 ? c.shear[ipeak] / c.normal[ipeak] : 0.0;
+  t.normal_at_peak = c.normal[ipeak];
 
   const double u_end = c.displacement.back();
   double rs = 0.0, rn = 0.0;
@@ -44,6 +45,7 @@ InterfaceTest interface_test(const InterfaceCurve& c, double residual_from) {
     if (c.displacement[i] >= residual_from * u_end) rs += c.shear[i], rn += c.normal[i], ++count;
   t.residual_shear = rs / static_cast<double>(count);
   t.residual_ratio = rn > 0.0 ? rs / rn : 0.0;
+  t.residual_normal = rn / static_cast<double>(count);
 
   // Secant stiffness: the first point where tau reaches half its peak (interpolated).
   const double half = 0.5 * t.peak_shear;

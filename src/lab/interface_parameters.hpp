@@ -21,6 +21,8 @@ struct InterfaceTest {
   double peak_shear = 0.0;     // Pa
   double displacement_at_peak = 0.0;
   double peak_ratio = 0.0;          // tau / sigma_n at the peak
+  double normal_at_peak = 0.0;      // sigma_n at the peak (Pa)
+  double residual_normal = 0.0;     // mean sigma_n over the residual range (Pa)
   double residual_shear = 0.0;      // mean over the residual range (Pa)
   double residual_ratio = 0.0;      // mean tau / mean sigma_n over it
   double shear_stiffness = 0.0;     // secant to half the peak shear stress (Pa/m)

@@ -43,6 +43,7 @@ InterfaceShearSettings read_interface_shear(const toml::table& root, const std::
                                        "must stay embedded)"
                                      : "expected at most box.length of slip");
   s.damping = sh->in_range("damping", s.damping, 0.0, 0.99);
+  s.normal_stiffness = sh->non_negative("normal_stiffness", 0.0);
   s.residual_from = sh->in_range("residual_from", s.residual_from, 0.0, 0.99);
   s.consolidation_tolerance =
       sh->in_range("consolidation_tolerance", s.consolidation_tolerance, 1e-4, 0.5);

@@ -30,6 +30,10 @@ struct InterfaceShearSettings : DepositedSoil, SheetSettings, DepositTime {
   double rate = 0.005;                                      // m/s of the sheet under the soil
   double max_displacement = 0.03;                           // m
   double damping = 0.2;                                     // local damping while shearing
+  // Constant normal stiffness (Pa/m): the plate's target normal stress grows by this much
+  // per metre the plate rises while shearing, as a soil round the interface that resists
+  // its dilation (the constant-normal-stiffness test); 0 holds the normal stress constant.
+  double normal_stiffness = 0.0;
   double residual_from = 0.8;             // the residual state: displacements past this fraction
   double consolidation_tolerance = 0.01;  // plate stress within this fraction of its target
   int history_points = 200;               // rows of each test in history.csv

@@ -237,7 +237,7 @@ struct InterfaceShear {
       drive_sheet(w, s.rate);
     const double x0 = S.pos[0].x(), plate0 = w.walls[plate_wall].point.y();
     const double d_record = s.max_displacement / s.history_points;
-    double next = d_record, u = 0.0, sum_t = 0.0, sum_n = 0.0, sum_p = 0.0;
+    double next = d_record, u = 0.0, sum_t = 0.0, sum_n = 0.0, sum_p = 0.0, sum_target = 0.0;
     std::uint64_t steps = 0;
     const std::uint64_t start = w.step;
     InterfaceCurve c;
@@ -259,21 +259,32 @@ struct InterfaceShear {
             const InterfaceStresses st = interface_stresses(w, s.box_length);
             sum_t += st.shear, sum_n += st.normal;
           }
-          sum_p += pressure, ++steps;
+          sum_p += pressure, sum_target += servo->target(), ++steps;
+          // Constant normal stiffness: the next step's target follows the plate's rise.
+          if (s.normal_stiffness > 0.0)
+            servo->set_target(std::max(
+                0.0,
+                sigma_n - weight + s.normal_stiffness * (w.walls[plate_wall].point.y() - plate0)));
           if (u + 1e-15 < next && u < s.max_displacement) return false;
           // A row holds the means since the previous one: the per-step values carry the
           // grains' vibrations.
           const double n = static_cast<double>(steps);
           const double tau = sum_t / n, sig = sum_n / n, pl = sum_p / n;
+          // The plate's mean target over the row (constant without a normal stiffness).
+          const double pl_target = s.normal_stiffness > 0.0 ? sum_target / n : servo->target();
+          const double cns_target = s.normal_stiffness > 0.0 ? pl_target + weight : sigma_n;
           const double rise = w.walls[plate_wall].point.y() - plate0;
-          history.row({static_cast<double>(test), sigma_n, static_cast<double>(w.step), w.time, u,
-                       tau, sig, sig > 0.0 ? tau / sig : 0.0, pl, rise, kinetic_energy(w),
+          history.row({static_cast<double>(test), cns_target, static_cast<double>(w.step), w.time,
+                       u, tau, sig, sig > 0.0 ? tau / sig : 0.0, pl, rise, kinetic_energy(w),
                        static_cast<double>(w.stats.spar_contacts)});
           c.displacement.push_back(u), c.shear.push_back(tau), c.normal.push_back(sig);
           c.dilation.push_back(rise);
-          servo_error = std::max(servo_error, std::abs(pl / servo->target() - 1.0));
-          servo_error_sum += std::abs(pl / servo->target() - 1.0);
-          sum_t = sum_n = sum_p = 0.0, steps = 0;
+          // Relative to the plate's load when shearing began: a target that a contracting
+          // soil lowers towards 0 would make a relative error meaningless.
+          const double servo_err = std::abs(pl - pl_target) / (sigma_n - weight);
+          servo_error = std::max(servo_error, servo_err);
+          servo_error_sum += servo_err;
+          sum_t = sum_n = sum_p = sum_target = 0.0, steps = 0;
           while (next <= u + 1e-15) next += d_record;
           progress.update(name + ": shear", w.step, w.time, u / s.max_displacement,
                           "tau/sigma " + format_sig(sig > 0.0 ? tau / sig : 0.0),
@@ -285,6 +296,8 @@ struct InterfaceShear {
     const InterfaceTest t = interface_test(c, s.residual_from);
     return {{"normal_stress_target", sigma_n},
             {"normal_stress", t.normal_stress},
+            {"normal_stress_at_peak", t.normal_at_peak},
+            {"normal_stress_residual", t.residual_normal},
             {"peak_shear_stress", t.peak_shear},
             {"displacement_at_peak", t.displacement_at_peak},
             {"peak_stress_ratio", t.peak_ratio},
@@ -338,21 +351,26 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
   run.deposit = run.w;
   run.history.open(opt.out_dir + "/history.csv", history_columns());
   nlohmann::json tests = nlohmann::json::array();
-  std::vector<double> sn, peak, residual;
+  // Under a constant normal stiffness the normal stress moves during a test: each envelope
+  // takes the normal stress of its own state (at the peak, over the residual range).
+  const bool cns = s.normal_stiffness > 0.0;
+  std::vector<double> sn, sn_residual, peak, residual;
   double stiffness_sum = 0.0;
   for (run.test = 0; run.test < s.normal_stress.size(); ++run.test) {
     tests.push_back(run.run_test(s.normal_stress[run.test]));
     const auto& t = tests.back();
-    sn.push_back(t["normal_stress"].get<double>());
+    sn.push_back(t[cns ? "normal_stress_at_peak" : "normal_stress"].get<double>());
+    sn_residual.push_back(t[cns ? "normal_stress_residual" : "normal_stress"].get<double>());
     peak.push_back(t["peak_shear_stress"].get<double>());
     residual.push_back(t["residual_shear_stress"].get<double>());
     stiffness_sum += t["shear_stiffness"].get<double>();
   }
   run.progress.finish();
   const InterfaceEnvelope ep = fit_interface_envelope(sn, peak);
-  const InterfaceEnvelope er = fit_interface_envelope(sn, residual);
+  const InterfaceEnvelope er = fit_interface_envelope(sn_residual, residual);
   nlohmann::json results;
   results["local_interface_friction_deg"] = s.interface_friction_deg;
+  results["normal_stiffness"] = s.normal_stiffness;
   results["interface_friction_peak_deg"] = ep.friction_deg;
   results["interface_adhesion_peak"] = ep.adhesion;
   results["interface_friction_residual_deg"] = er.friction_deg;

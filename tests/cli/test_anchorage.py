@@ -78,6 +78,35 @@ class AnchorageTest(unittest.TestCase):
             self.assertGreater(t["peak_shear_stress"], 0.0)
         self.assertTrue(res["peak_envelope"]["fitted"])
 
+    def test_constant_normal_stiffness_moves_the_normal_stress_with_the_plate(self):
+        # With shear.normal_stiffness = k the plate's target is sigma0 + k x its rise: the
+        # small soil contracts as it is sheared, so the normal stress falls with the plate.
+        k = 5e6
+        text = shear(base="soil").replace("[shear]\n", f"[shear]\nnormal_stiffness = {k}\n")
+        out = self.dir / "cns"
+        r = run("run", self.write(text), "--out", str(out), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = json.loads((out / "summary.json").read_text())["results"]
+        self.assertEqual(res["normal_stiffness"], k)
+        with open(out / "history.csv") as f:
+            rows = list(csv.DictReader(f))
+        for test, sigma0 in (("0", 10e3), ("1", 20e3)):
+            prev, moved = 0.0, 0.0
+            for row in (r for r in rows if r["test"] == test):
+                sig, target = float(row["normal_stress"]), float(row["normal_stress_target"])
+                rise = float(row["dilation"])
+                # The servo holds the moving target within 1 % of sigma0 in every row.
+                self.assertLess(abs(sig - target), 0.01 * sigma0)
+                # The row's mean target against the law at the row's mid rise: within 3 %
+                # of sigma0, the change of k x rise within one of 50 rows.
+                self.assertLess(abs(target - (sigma0 + k * 0.5 * (prev + rise))), 0.03 * sigma0)
+                prev, moved = rise, max(moved, abs(sig - sigma0))
+            self.assertGreater(moved, 0.1 * sigma0)  # the stiffness did act
+        for t in res["tests"]:
+            self.assertAlmostEqual(t["peak_stress_ratio"],
+                                   t["peak_shear_stress"] / t["normal_stress_at_peak"])
+            self.assertLess(t["servo_error_max"], 0.01)
+
     def test_deposit_cache_gives_the_runs_bit_for_bit(self):
         # A deposit stored by one run and loaded by the next (and by a run of other normal
         # stresses): every output as without the cache. A damaged file is a miss.
