@@ -40,3 +40,5 @@ for soil in ("sand", "silt"):
 PY
 cat "$EXPECTED/examples.md"
 python3 examples/interface_shear2d/delta_table.py "$OUT/delta_table" --seeds 3 | tee "$EXPECTED/delta_table.md"
+# Confined dilatancy: the silt at constant normal stiffnesses (about 30 s).
+python3 examples/interface_shear2d/cns_table.py "$OUT/cns" | tee "$EXPECTED/cns_table.md"
