@@ -42,7 +42,7 @@ SheetPartLoads sheet_part_loads(const SparChains<2>& sheet,
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t p = part_of(k);
     if (!seen[p]) seen[p] = true, begins[p] = sheet.tension[first + k];
-    r.normal[p] += std::max(normal_of(first + k), 0.0);
+    r.normal[p] += normal_of(first + k);  // sums of compressive forces only
   }
   begins[kSheetParts] = 0.0;  // the anchored end is free
   for (std::size_t p = kSheetParts; p-- > 0;)
