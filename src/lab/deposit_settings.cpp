@@ -45,6 +45,9 @@ void read_sheet(TableReader& r, double radius, SheetSettings& s) {
   s.thickness = sh->positive("thickness", s.thickness);
   s.bending = sh->non_negative("bending_stiffness", 0.0);
   s.mass_scaling = sh->boolean("mass_scaling", true);
+  s.node_mass_factor = sh->non_negative("node_mass_factor", 0.0);
+  if (s.node_mass_factor > 0.0 && s.node_mass_factor < 1.0)
+    sh->fail("node_mass_factor", "a factor of 1 or more (0: the automatic estimate)");
   sh->finish();
 }
 

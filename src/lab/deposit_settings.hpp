@@ -33,10 +33,11 @@ struct SheetSettings {
   double stiffness_J = 1e5;     // N/m
   double element_length = 0.0;  // 0: the mean grain diameter
   double interface_friction_deg = 34.0;
-  double mass_per_area = 0.5;  // kg/m^2
-  double thickness = 0.002;    // m (contact radius of the elements is half of it)
-  double bending = 0.0;        // N m/rad per m width at each node
-  bool mass_scaling = true;    // raise node masses so the sheet does not set the time step
+  double mass_per_area = 0.5;     // kg/m^2
+  double thickness = 0.002;       // m (contact radius of the elements is half of it)
+  double bending = 0.0;           // N m/rad per m width at each node
+  bool mass_scaling = true;       // raise node masses so the sheet does not set the time step
+  double node_mass_factor = 0.0;  // > 0: this factor instead of the estimate (mass_scaling)
 };
 
 // [time] of these kinds: the automatic time step and the settling limit.

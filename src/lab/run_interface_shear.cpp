@@ -171,7 +171,8 @@ struct InterfaceShear {
     const std::size_t lower = P.size();
     hold_grains(w, std::vector<char>(lower, 1), true);
     add_pulled_sheet(w, box, sheet_axis(), s.box_length - 2.0 * s.radius);
-    if (s.mass_scaling) scale_sheet_inertia(w, s.soil.young, s.stiffness_J, s.element_length);
+    if (s.mass_scaling)
+      scale_sheet_inertia(w, s.soil.young, s.stiffness_J, s.element_length, s.node_mass_factor);
     w.rebuild_needed = true;
     deposit_layers(s.lower_height + box.thickness, s.lower_height + box.thickness + s.box_height,
                    "upper soil");

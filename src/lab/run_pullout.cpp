@@ -282,7 +282,8 @@ struct Pullout {
     for (std::size_t i = 0; i < P.size(); ++i) w.particles.id[i] = static_cast<std::uint32_t>(i);
     lay_sheet();
     if (s.mass_scaling)
-      node_mass_factor = scale_sheet_inertia(w, s.soil.young, s.stiffness_J, s.element_length);
+      node_mass_factor =
+          scale_sheet_inertia(w, s.soil.young, s.stiffness_J, s.element_length, s.node_mass_factor);
     w.rebuild_needed = true;
     foundation = P.size();
     hold_grains(w, std::vector<char>(foundation, 1), true);

@@ -12,9 +12,15 @@
 namespace geodem {
 
 // Returns the factor applied to every node's mass. young: the soil's contact modulus
-// (2D: kn = E, a grain on each face); J and element_length: the sheet's.
-inline double scale_sheet_inertia(World<2>& w, double young, double J, double element_length) {
+// (2D: kn = E, a grain on each face); J and element_length: the sheet's. A given factor
+// (> 0) replaces the estimate: below it the sheet sets the automatic time step.
+inline double scale_sheet_inertia(World<2>& w, double young, double J, double element_length,
+                                  double given_factor = 0.0) {
   auto& S = w.spars;
+  if (given_factor > 0.0) {
+    for (std::size_t i = 0; i < S.nodes(); ++i) S.inertial_mass[i] = given_factor * S.mass[i];
+    return given_factor;
+  }
   World<2> grains_only = w;
   grains_only.spars = SparChains<2>{};
   grains_only.rebuild_needed = true;

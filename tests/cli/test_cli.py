@@ -5,6 +5,7 @@ Run by CTest: python3 test_cli.py GEODEM_BINARY REPO_ROOT
 import csv
 import hashlib
 import json
+import math
 import os
 import random
 import shutil
@@ -434,6 +435,32 @@ create = "initial"
             self.assertTrue((out / name).exists(), name)
         pvd = (out / "vtk" / "particles.pvd").read_text()
         self.assertIn("spars_000000.vtp", pvd)
+
+    def test_pullout_sheet_node_mass_factor(self):
+        # A given factor replaces the estimate; at 1 (the sheet's true mass) the automatic
+        # time step must respect a node on its two elements alone: dt <= safety x
+        # sqrt(2 m / (2 J / l)), m = 0.5 kg/m2 x l (l = 2 x 8 mm, J = 1e5 N/m, safety 0.8).
+        text = SMALL_PULLOUT.format(shape="runout", trench="").replace(
+            "max_displacement = 0.03", "max_displacement = 0.002")
+        dts = {}
+        for name, extra in (("estimate", ()), ("true_mass", ("--set", "sheet.node_mass_factor=1"))):
+            out = self.dir / name
+            r = run("run", self.write(text), "--out", str(out), "--quiet", *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            res = json.loads((out / "summary.json").read_text())["results"]
+            dts[name] = res["dt"]
+            if name == "true_mass":
+                self.assertEqual(res["sheet"]["node_mass_factor"], 1.0)
+            else:
+                self.assertGreater(res["sheet"]["node_mass_factor"], 1.0)
+        l, J = 0.016, 1e5
+        bound = 0.8 * math.sqrt(2.0 * 0.5 * l / (2.0 * J / l))
+        print(f"[ measured ] pull-out dt: estimate {dts['estimate']:.3g} s, true sheet mass "
+              f"{dts['true_mass']:.3g} s (bound {bound:.3g} s)")
+        self.assertLessEqual(dts["true_mass"], bound)
+        self.assertLess(dts["true_mass"], dts["estimate"])
+        self.assertBadInput(text.replace("[sheet]", "[sheet]\nnode_mass_factor = 0.5"),
+                            "node_mass_factor", "1 or more")
 
     def test_scene_with_a_chain(self):
         text = (Path(__file__).parent / "chain_scene.toml").read_text()
