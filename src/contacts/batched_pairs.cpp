@@ -12,6 +12,8 @@
 #include "contacts/batched_pairs.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <type_traits>
 #include <vector>
@@ -33,6 +35,19 @@ double* doubles(std::vector<T>& v) {
     static_assert(sizeof(T) == T::SizeAtCompileTime * sizeof(double));
     return v.empty() ? nullptr : v.front().data();
   }
+}
+
+// The spring's own bits where keep is all ones, +0 where it is zero.
+template <int D>
+inline void keep_or_clear(TangentSpring<D>& s, std::uint64_t keep) {
+  double* p = nullptr;
+  if constexpr (D == 2) {
+    p = &s;
+  } else {
+    p = s.data();
+  }
+  for (int a = 0; a < (D == 2 ? 1 : D); ++a)
+    p[a] = std::bit_cast<double>(std::bit_cast<std::uint64_t>(p[a]) & keep);
 }
 
 BatchLaw batch_law_of(const PairLaw& p) {
@@ -192,9 +207,10 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
       // keeps: whether a pair touches is hard to predict, and a branch on it would discard the
       // work in flight at each wrong guess.
       const bool apart = dist2 >= rs * rs;
-      // Apart: the history ends (written only when there is one, to spare stores; the
-      // conditions are combined without a jump).
-      if (apart & (spring_norm2<D>(spring[k]) != 0.0)) spring[k] = unloaded_spring<D>();
+      // Apart: the history ends where there is one. The spring is written back either way,
+      // its own bits or +0 through a mask, so that nothing waits on a guess of `apart`.
+      const bool ends = apart & (spring_norm2<D>(spring[k]) != 0.0);
+      keep_or_clear<D>(spring[k], std::uint64_t{0} - static_cast<std::uint64_t>(!ends));
       const PairLaw* pair_law = one_material ? laws : laws + material[j];
       if (!apart & (pair_law != law)) [[unlikely]] {
         if (n > 0) add_batch();
