@@ -94,18 +94,27 @@ class SlabCrossings {
   // Where the task of slab s writes: emptied here, filled by push().
   class Writer {
    public:
-    void push(const Entry& e) { bucket_[e.body < n_ ? e.body / len_ : slabs_].push_back(e); }
+    void push(const Entry& e) {
+      // Most crossing pairs reach the next slab: spared the division.
+      const std::size_t b = e.body;
+      const std::size_t target = b >= n_ ? slabs_ : b - next_first_ < len_ ? next_ : b / len_;
+      bucket_[target].push_back(e);
+    }
 
    private:
     friend class SlabCrossings;
     std::vector<Entry>* bucket_;
     std::size_t n_, len_, slabs_;
+    std::size_t next_, next_first_;  // the slab after the writer's, and its first body
   };
   Writer slab(std::size_t s) {
     Writer w;
     w.bucket_ = buckets_.data() + s * (slabs_ + 1);
     for (std::size_t t = 0; t <= slabs_; ++t) w.bucket_[t].clear();
     w.n_ = n_, w.len_ = len_, w.slabs_ = slabs_;
+    // The last slab's next one would start at n_, where the bodies beyond the grains go.
+    w.next_ = s + 1 < slabs_ ? s + 1 : slabs_;
+    w.next_first_ = s + 1 < slabs_ ? (s + 1) * len_ : std::size_t(-1) / 2;
     return w;
   }
   // Calls add(entry) for every entry, target slabs side by side (the bodies beyond the

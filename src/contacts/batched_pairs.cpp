@@ -13,8 +13,8 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <type_traits>
 #include <vector>
 
