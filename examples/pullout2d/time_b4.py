@@ -10,27 +10,21 @@ peak resident memory (GNU time), the steps, the speed and the stages from summar
 import argparse
 import json
 import pathlib
-import re
-import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "benchmarks" / "b2_settle3d"))
+from run_b2 import time_v  # noqa: E402  (/usr/bin/time -v: wall seconds, peak RSS kB)
 
 
 def time_one(example, threads, out):
-    cmd = ["/usr/bin/time", "-v", str(ROOT / "build/geodem"), "run",
-           str(ROOT / f"examples/pullout2d/{example}.toml"), "--out", str(out), "--overwrite",
-           "--quiet", "--set", "seeds=1", "--threads", str(threads)]
-    proc = subprocess.run(cmd, capture_output=True, text=True, check=True)
-    wall = re.search(r"Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)", proc.stderr)
-    hours, minutes, seconds = (float(g) if g else 0.0 for g in wall.groups())
-    rss_kb = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", proc.stderr).group(1))
-    summary = pathlib.Path(out) / "summary.json"
-    if not summary.exists():  # a multi-seed layout keeps each run's summary under runs/
-        summary = pathlib.Path(out) / "runs" / "seed1" / "summary.json"
-    timing = json.loads(summary.read_text())["timing"]
+    wall, rss_kb, _ = time_v([str(ROOT / "build/geodem"), "run",
+                              str(ROOT / f"examples/pullout2d/{example}.toml"), "--out", str(out),
+                              "--overwrite", "--quiet", "--set", "seeds=1", "--threads",
+                              str(threads)])
+    timing = json.loads((pathlib.Path(out) / "summary.json").read_text())["timing"]
     return {
-        "wall": 3600 * hours + 60 * minutes + seconds,
+        "wall": wall,
         "rss_mb": rss_kb / 1024,
         "grains": timing["particles"],
         "steps": timing["steps"],

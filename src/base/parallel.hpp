@@ -112,9 +112,9 @@ class SlabCrossings {
     w.bucket_ = buckets_.data() + s * (slabs_ + 1);
     for (std::size_t t = 0; t <= slabs_; ++t) w.bucket_[t].clear();
     w.n_ = n_, w.len_ = len_, w.slabs_ = slabs_;
-    // The last slab's next one would start at n_, where the bodies beyond the grains go.
-    w.next_ = s + 1 < slabs_ ? s + 1 : slabs_;
-    w.next_first_ = s + 1 < slabs_ ? (s + 1) * len_ : std::size_t(-1) / 2;
+    // For the last slab next_first_ >= n_: no grain maps there, bodies from n_ up go to slabs_.
+    w.next_ = s + 1;
+    w.next_first_ = (s + 1) * len_;
     return w;
   }
   // Calls add(entry) for every entry, target slabs side by side (the bodies beyond the

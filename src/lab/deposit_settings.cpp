@@ -48,6 +48,8 @@ void read_sheet(TableReader& r, double radius, SheetSettings& s) {
   s.node_mass_factor = sh->non_negative("node_mass_factor", 0.0);
   if (s.node_mass_factor > 0.0 && s.node_mass_factor < 1.0)
     sh->fail("node_mass_factor", "a factor of 1 or more (0: the automatic estimate)");
+  if (s.node_mass_factor > 0.0 && !s.mass_scaling)
+    sh->fail("node_mass_factor", "no factor with mass_scaling = false (the true mass)");
   sh->finish();
 }
 

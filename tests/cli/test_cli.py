@@ -461,6 +461,9 @@ create = "initial"
         self.assertLess(dts["true_mass"], dts["estimate"])
         self.assertBadInput(text.replace("[sheet]", "[sheet]\nnode_mass_factor = 0.5"),
                             "node_mass_factor", "1 or more")
+        self.assertBadInput(text.replace(
+            "[sheet]", "[sheet]\nnode_mass_factor = 10\nmass_scaling = false"),
+            "node_mass_factor", "mass_scaling")
 
     def test_scene_with_a_chain(self):
         text = (Path(__file__).parent / "chain_scene.toml").read_text()
