@@ -1,0 +1,109 @@
+// ExactSum (base/exact_sum.hpp): the sum of doubles rounded once, whatever the order of the
+// terms and however they were shared between accumulators. References: IEEE addition of two
+// doubles is itself correctly rounded, so a two-term ExactSum must equal a + b exactly; sums
+// whose exact value is known (terms that cancel, ties) check the rounding of longer sums.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "base/exact_sum.hpp"
+
+namespace geodem {
+namespace {
+
+double exact(const std::vector<double>& v) {
+  ExactSum s;
+  for (double x : v) s.add(x);
+  return s.value();
+}
+
+std::uint64_t bits(double x) {
+  return std::bit_cast<std::uint64_t>(x);
+}
+
+// Doubles of random sign, significand and exponent in [2^lo, 2^hi).
+std::vector<double> random_terms(std::size_t n, int lo, int hi, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> sig(1.0, 2.0);
+  std::uniform_int_distribution<int> ex(lo, hi - 1);
+  std::vector<double> v(n);
+  for (auto& x : v) x = std::ldexp(sig(rng), ex(rng)) * ((rng() & 1) ? -1.0 : 1.0);
+  return v;
+}
+
+TEST(ExactSum, TwoTermsEqualTheCorrectlyRoundedIeeeSum) {
+  // Across the whole range: subnormals, mixed scales, near overflow.
+  for (auto [lo, hi] : {std::pair{-1074, -1000}, std::pair{-60, 60}, std::pair{-1074, 1023},
+                        std::pair{960, 1023}}) {
+    const auto v = random_terms(20000, lo, hi, 7u + static_cast<unsigned>(lo + 2000));
+    for (std::size_t i = 0; i + 1 < v.size(); i += 2)
+      ASSERT_EQ(bits(exact({v[i], v[i + 1]})), bits(v[i] + v[i + 1])) << v[i] << " + " << v[i + 1];
+  }
+}
+
+TEST(ExactSum, OrderAndSharingDoNotChangeTheBits) {
+  auto v = random_terms(5000, -40, 40, 11);
+  const double reference = exact(v);
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::shuffle(v.begin(), v.end(), rng);
+    EXPECT_EQ(bits(exact(v)), bits(reference));
+    // Shared between 1 to 5 accumulators (ranks), merged in any order.
+    const std::size_t parts = 1 + static_cast<std::size_t>(trial % 5);
+    std::vector<ExactSum> acc(parts);
+    for (std::size_t i = 0; i < v.size(); ++i)
+      acc[(i * 7 + static_cast<std::size_t>(trial)) % parts].add(v[i]);
+    ExactSum total;
+    for (std::size_t p = parts; p-- > 0;) total.add(acc[p]);
+    EXPECT_EQ(bits(total.value()), bits(reference));
+  }
+  // And it is the sum: a naive one agrees to its rounding errors.
+  double forward = 0.0;
+  for (double x : v) forward += x;
+  EXPECT_NEAR(forward, reference, 1e-9 * std::abs(reference) + 1e-9);
+}
+
+TEST(ExactSum, KnownSumsAreExact) {
+  EXPECT_EQ(exact({1e100, 1.0, -1e100}), 1.0);
+  // 0.1 + 0.2 - 0.3 over the three doubles: 0.1 + 0.2 = s + err exactly (Knuth's TwoSum), and
+  // s - 0.3 is exact (Sterbenz), so the correctly rounded sum is (s + c) + err.
+  const double a = 0.1, b = 0.2, c = -0.3;
+  const double s = a + b, bb = s - a, err = (a - (s - bb)) + (b - bb);
+  EXPECT_EQ(exact({a, b, c}), (s + c) + err);
+  // Terms that cancel in pairs leave the odd one out, whatever their scales.
+  auto v = random_terms(4000, -1074, 1020, 5);
+  std::vector<double> w;
+  for (double x : v) w.push_back(x), w.push_back(-x);
+  w.push_back(std::ldexp(1.0, -1074));
+  std::shuffle(w.begin(), w.end(), std::mt19937(9));
+  EXPECT_EQ(exact(w), std::ldexp(1.0, -1074));
+  EXPECT_EQ(exact({}), 0.0);
+  EXPECT_EQ(exact({-2.5, -0.25}), -2.75);
+}
+
+TEST(ExactSum, RoundsToNearestWithTiesToEven) {
+  const double big = std::ldexp(1.0, 53);                        // spacing 2 above it
+  EXPECT_EQ(exact({big, 1.0}), big);                             // tie: to even
+  EXPECT_EQ(exact({big, 1.0, std::ldexp(1.0, -200)}), big + 2);  // just past the tie: up
+  EXPECT_EQ(exact({big + 2, 1.0}), big + 4);                     // tie: to even (up)
+  EXPECT_EQ(exact({-big, -1.0, -std::ldexp(1.0, -200)}), -(big + 2));
+  const double max = std::numeric_limits<double>::max();
+  EXPECT_EQ(exact({max, max, -max}), max);  // no overflow in between
+  EXPECT_EQ(exact({max, max}), std::numeric_limits<double>::infinity());
+}
+
+TEST(ExactSum, InfinitiesAndNaN) {
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(exact({1.0, inf}), inf);
+  EXPECT_EQ(exact({1.0, -inf}), -inf);
+  EXPECT_TRUE(std::isnan(exact({inf, -inf})));
+  EXPECT_TRUE(std::isnan(exact({1.0, std::nan("")})));
+}
+
+}  // namespace
+}  // namespace geodem
