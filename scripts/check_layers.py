@@ -18,8 +18,8 @@ SRC = ROOT / "src"
 LAYERS = {
     "base": ["base"],
     "engine": ["materials", "particles", "clumps", "walls", "structures", "contacts",
-               "broadphase", "integrate", "controllers", "measure", "world"],
-    "app": ["io", "scene", "lab", "study", "kinds"],
+               "broadphase", "integrate", "controllers", "measure", "world", "domain"],
+    "app": ["io", "scene", "lab", "study", "kinds", "distributed"],
 }
 RANK = {"base": 0, "engine": 1, "app": 2, "cli": 3}
 NO_FILES = re.compile(r"^(toml\+\+/|nlohmann/|zlib\.h$|fstream$|filesystem$)")

@@ -53,19 +53,20 @@ T ordered_sum(std::size_t n, int threads, const T& zero, Term&& term) {
 // alone, never on the thread count: long enough that few pairs cross slabs and that a
 // slab's work (about 100 us for 1,024 grains) dwarfs the cost of handing it to a thread,
 // short enough for 32 slabs to share among threads.
+// A caller may fix the length instead (`fixed` > 0: World::fixed_slab).
 constexpr std::size_t kMinSlab = 1024;
-inline std::size_t slab_length(std::size_t n) {
-  return std::max<std::size_t>(kMinSlab, (n + 31) / 32);
+inline std::size_t slab_length(std::size_t n, std::size_t fixed = 0) {
+  return fixed > 0 ? fixed : std::max<std::size_t>(kMinSlab, (n + 31) / 32);
 }
-inline std::size_t slab_count(std::size_t n) {
-  return (n + slab_length(n) - 1) / slab_length(n);
+inline std::size_t slab_count(std::size_t n, std::size_t fixed = 0) {
+  return (n + slab_length(n, fixed) - 1) / slab_length(n, fixed);
 }
 
 // Runs body(slab, first, last) for every slab of n grains, side by side.
 template <typename Body>
-void for_slabs(std::size_t n, int threads, Body&& body) {
-  const std::size_t len = slab_length(n);
-  const auto ns = static_cast<std::ptrdiff_t>(slab_count(n));
+void for_slabs(std::size_t n, int threads, Body&& body, std::size_t fixed = 0) {
+  const std::size_t len = slab_length(n, fixed);
+  const auto ns = static_cast<std::ptrdiff_t>(slab_count(n, fixed));
   const bool par = threads > 1 && ns >= 2 && n >= kParallelMin;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (par)
   for (std::ptrdiff_t s = 0; s < ns; ++s) {
@@ -85,10 +86,10 @@ template <typename Entry>  // an Entry has a field `body`
 class SlabCrossings {
  public:
   // Buckets for n grains; their contents are left to the slabs' tasks to clear.
-  void prepare(std::size_t n) {
+  void prepare(std::size_t n, std::size_t fixed = 0) {
     n_ = n;
-    len_ = slab_length(n);
-    slabs_ = slab_count(n);
+    len_ = slab_length(n, fixed);
+    slabs_ = slab_count(n, fixed);
     if (buckets_.size() < slabs_ * (slabs_ + 1)) buckets_.resize(slabs_ * (slabs_ + 1));
   }
   // Where the task of slab s writes: emptied here, filled by push().

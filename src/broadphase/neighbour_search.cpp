@@ -170,6 +170,7 @@ void list_spar_pairs(World<D>& world, const Grid<D>& g, double rmax) {
 template <int D>
 double skin_length(const World<D>& world) {
   const auto& r = world.particles.radius;
+  if (world.domain) return world.domain->skin();
   if (r.empty()) return 0.0;
   double sum = 0.0;
   for (double v : r) sum += v;
@@ -286,8 +287,11 @@ void build_neighbour_list(World<D>& world) {
     const bool clumps = !P.clump.empty();
     // Calls pair(j) for each grain j > i within reach of grain i, and wall(w) for each
     // wall within reach.
+    // A ghost (domain/slab_domain.hpp) pairs with the rank's own grains only, and has no walls.
+    const std::uint8_t* flags = P.flags.data();
     auto scan = [&](std::size_t i, auto&& pair, auto&& wall) {
       const Vec xi = P.pos[i];
+      const bool ghost = flags[i] & kGhost;
       const std::uint32_t ci = clumps ? P.clump[i] : kNoClump;
       const double ri = P.radius[i] + L.skin;
       std::array<int, 3> c{0, 0, 0};
@@ -306,13 +310,14 @@ void build_neighbour_list(World<D>& world) {
             const std::uint32_t j = g.sorted[s];
             if (j <= i) continue;
             if (ci != kNoClump && P.clump[j] == ci) continue;  // members of one clump
+            if (ghost && (flags[j] & kGhost)) continue;
             const double reach = ri + P.radius[j];
             if ((P.pos[j] - xi).squaredNorm() < reach * reach) pair(j);
           }
         }
       }
       // Walls: few, so every grain checks each (documented in docs/architecture.md).
-      for (std::size_t w = 0; w < world.walls.size(); ++w) {
+      for (std::size_t w = 0; w < world.walls.size() && !ghost; ++w) {
         Vec q;
         wall_closest(world.walls[w], xi, q, /*apply_owner_rule=*/false);
         const auto& wl = world.walls[w];

@@ -196,18 +196,21 @@ template <int D>
 void cell_fabric_of_grains(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   const auto& P = world.particles;
   SlabTally<D>* tally = tallies.data();
-  for_slabs(P.size(), world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
-    typename Dim<D>::Tensor sum = Dim<D>::Tensor::Zero();
-    for (std::size_t i = first; i < last; ++i) sum += P.pos[i] * P.force[i].transpose();
-    tally[s].cell_fabric += sum;
-  });
+  for_slabs(
+      P.size(), world.threads,
+      [&](std::size_t s, std::size_t first, std::size_t last) {
+        typename Dim<D>::Tensor sum = Dim<D>::Tensor::Zero();
+        for (std::size_t i = first; i < last; ++i) sum += P.pos[i] * P.force[i].transpose();
+        tally[s].cell_fabric += sum;
+      },
+      world.fixed_slab(P.size()));
 }
 
 template <int D, bool Measure, bool Extras, bool Periodic>
 void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   SlabTally<D>* tally = tallies.data();
   auto& crossing = world.slab_crossing;
-  crossing.prepare(world.particles.size());
+  crossing.prepare(world.particles.size(), world.fixed_slab(world.particles.size()));
   // Contacts without extras run in batches unless the scalar loop is asked for.
   const bool batched = contact_path() != ContactPath::kScalar && batch_kernel_has(world.pair_laws);
   for_slabs(
@@ -220,7 +223,8 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
           }
         }
         pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally[s], crossing.slab(s));
-      });
+      },
+      world.fixed_slab(world.particles.size()));
   // The crossing forces, each grain's in slab order.
   auto& P = world.particles;
   crossing.apply(world.threads, [&P](const SlabCrossing<D>& c) {
@@ -304,10 +308,12 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
     }
   };
   SlabTally<D>* tally = tallies.data();
-  for_slabs(world.particles.size(), world.threads,
-            [&](std::size_t s, std::size_t first, std::size_t last) {
-              for (std::size_t i = first; i < last; ++i) row(i, tally[s]);
-            });
+  for_slabs(
+      world.particles.size(), world.threads,
+      [&](std::size_t s, std::size_t first, std::size_t last) {
+        for (std::size_t i = first; i < last; ++i) row(i, tally[s]);
+      },
+      world.fixed_slab(world.particles.size()));
 }
 
 }  // namespace
@@ -317,7 +323,8 @@ void compute_contact_forces(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   // Per-slab sums, kept between steps so that the step allocates nothing.
   static thread_local std::vector<SlabTally<D>> tallies;
-  const std::size_t slabs = slab_count(world.particles.size());
+  const std::size_t slabs =
+      slab_count(world.particles.size(), world.fixed_slab(world.particles.size()));
   const std::size_t nw = world.walls.size();
   if (tallies.size() < slabs) tallies.resize(slabs);
   for (std::size_t s = 0; s < slabs; ++s) {

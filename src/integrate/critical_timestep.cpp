@@ -115,9 +115,10 @@ double critical_timestep(const World<D>& world) {
   // body outside the slab (a grain of a later slab, a clump) is added afterwards, in slab
   // order, so that the sums, and dt, do not depend on the thread count.
   auto& crossing = world.slab_crossing;
-  crossing.prepare(have_list ? n : 0);
+  crossing.prepare(have_list ? n : 0, world.fixed_slab(n));
   for_slabs(
-      have_list ? n : 0, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
+      have_list ? n : 0, world.threads,
+      [&](std::size_t s, std::size_t first, std::size_t last) {
         auto out = crossing.slab(s);
         auto add = [&](std::size_t b, const Vec& nrm, double kn, double kt, const Vec& l, double kr,
                        double ktw) {
@@ -180,7 +181,8 @@ double critical_timestep(const World<D>& world) {
             add(body(i), nrm, kn, nr.kt, lever(i, nrm), 0.0, 0.0);
           }
         }
-      });
+      },
+      world.fixed_slab(n));
   crossing.apply(world.threads, [&K](const SlabCrossing<D>& c) { K.add(c); });
 
   // dt^2 = 2 x the smallest of m/K_t and I/K_r (the sqrt(2) of yade: the critical
@@ -192,7 +194,8 @@ double critical_timestep(const World<D>& world) {
               : dt2) if (world.threads > 1 && n >= kParallelMin)
   for (std::ptrdiff_t ii = 0; ii < grains; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    if (P.inv_mass[i] == 0.0) continue;
+    // A ghost's contacts are its owner's to count (here it lacks those with other ghosts).
+    if (P.inv_mass[i] == 0.0 || (P.flags[i] & kGhost)) continue;
     const double m = 1.0 / P.inv_mass[i], inertia = 1.0 / P.inv_inertia[i];
     const auto& mat = world.materials[P.material[i]];
     const PairLaw& self = world.pair_law(P.material[i], P.material[i]);

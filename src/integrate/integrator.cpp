@@ -53,7 +53,8 @@ void integrate(World<D>& world) {
     reduction(max                                                    \
               : vmax2) if (world.threads > 1 && n >= kParallelMin)
   for (std::ptrdiff_t i = 0; i < nn; ++i) {
-    if (flags[i] & kClumpMember) continue;  // moved with its clump below
+    // Moved with its clump below, or a ghost (its owner moves it).
+    if (flags[i] & (kClumpMember | kGhost)) continue;
     if (!(flags[i] & kFixed)) {
       Vec a = force[i] * inv_mass[i] + g;
       Rot aw = torque[i] * inv_inertia[i];

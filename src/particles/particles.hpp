@@ -13,6 +13,9 @@ namespace geodem {
 enum ParticleFlags : std::uint8_t {
   kFixed = 1u << 0,        // not integrated: keeps its prescribed velocity
   kClumpMember = 1u << 1,  // moved by its clump (clumps/clumps.hpp), not integrated alone
+  // A copy of a grain another rank owns (domain/slab_domain.hpp): its state comes from there
+  // after each step; it has no wall contacts and no contacts with other ghosts here.
+  kGhost = 1u << 2,
 };
 
 template <int D>
@@ -82,7 +85,7 @@ struct Particles {
   bool fixed(std::size_t i) const { return flags[i] & kFixed; }
   bool member(std::size_t i) const { return flags[i] & kClumpMember; }
   // A body integrated on its own: neither fixed nor a clump member.
-  bool free_body(std::size_t i) const { return !(flags[i] & (kFixed | kClumpMember)); }
+  bool free_body(std::size_t i) const { return !(flags[i] & (kFixed | kClumpMember | kGhost)); }
 
   // Reorders every array: new index k holds the grain that had index order[k]. An
   // order shorter than the grains keeps only those it lists (removal).

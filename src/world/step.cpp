@@ -99,7 +99,8 @@ bool list_expired(World<D>& world) {
 template <int D>
 void update_timestep(World<D>& world) {
   if (!world.auto_dt) return;
-  const double dt = critical_timestep(world);
+  double dt = critical_timestep(world);
+  if (world.domain) dt = world.domain->min_over_ranks(dt);
   if (std::isfinite(dt) && dt > 0.0) {
     world.dt = dt;
   } else if (!(dt > 0.0)) {  // zero or NaN: the run cannot advance (+inf: keep the last step)
@@ -228,7 +229,10 @@ template <int D>
 void step(World<D>& world) {
   {
     ScopedStage<D> t(world, Stage::kNeighbours);
-    if (world.rebuild_needed || list_expired(world)) {
+    bool rebuild = world.rebuild_needed || list_expired(world);
+    if (world.domain) rebuild = world.domain->any_rank(rebuild);
+    if (rebuild) {
+      if (world.domain) world.domain->before_build(world);
       // A build is a run's peak of memory (the old rows and the new ones are both resident).
       // The forces and torques are set afresh after it: their arrays are given back while it
       // runs (48 bytes a grain in 3D), unless views of them exist (Python's numpy arrays).
@@ -276,6 +280,7 @@ void step(World<D>& world) {
     ScopedStage<D> t(world, Stage::kIntegration);
     integrate(world);
     move_walls(world);
+    if (world.domain) world.domain->after_integration(world);
     if (world.cell.periodic) world.cell.deform(world.dt);
     world.time += world.dt;
     ++world.step;

@@ -3,6 +3,7 @@
 // never reads files.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -19,6 +20,7 @@
 #include "particles/particles.hpp"
 #include "structures/spar_chains.hpp"
 #include "walls/walls.hpp"
+#include "world/domain_hooks.hpp"
 #include "world/periodic_cell.hpp"
 
 namespace geodem {
@@ -109,6 +111,15 @@ struct WorldSettings {
   // Sum each wall's contact dashpots (Wall::dashpot) in the force stage: only a servo that
   // counts them asks (a square root per wall contact otherwise spared).
   bool tally_wall_dashpots = false;
+  // The force stage's grains in one slab instead of slab_length(n) each: every grain then sums
+  // its contacts in the order of its partners' indices alone (a distributed run's ranks hold
+  // different numbers of grains, whose slabs would differ).
+  bool one_slab = false;
+  // Set when the world is one rank's part of a decomposed domain (domain/slab_domain.hpp).
+  std::shared_ptr<DomainHooks<D>> domain;
+
+  // The slab length the force stage uses (0: slab_length(n), base/parallel.hpp).
+  std::size_t fixed_slab(std::size_t n) const { return one_slab ? std::max<std::size_t>(n, 1) : 0; }
 };
 
 // State: what the step advances and a checkpoint saves (world/world_state.cpp): the bodies,

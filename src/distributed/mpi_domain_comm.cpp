@@ -1,0 +1,108 @@
+#include "distributed/mpi_domain_comm.hpp"
+
+#include <climits>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#ifdef GEODEM_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace geodem {
+
+#ifdef GEODEM_HAVE_MPI
+namespace {
+
+int count_of(std::size_t bytes) {
+  if (bytes > static_cast<std::size_t>(INT_MAX))
+    throw std::runtime_error("a domain message of " + std::to_string(bytes) +
+                             " bytes is past MPI's int count: use more ranks");
+  return static_cast<int>(bytes);
+}
+
+class MpiDomainComm final : public DomainComm {
+ public:
+  MpiDomainComm() {
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    lower_ = rank_ > 0 ? rank_ - 1 : MPI_PROC_NULL;
+    upper_ = rank_ + 1 < size_ ? rank_ + 1 : MPI_PROC_NULL;
+  }
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+
+  void exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower,
+                Bytes& from_upper) override {
+    // Sizes first (upwards, then downwards), then the bytes.
+    std::uint64_t up_n = to_upper.size(), down_n = to_lower.size(), from_lo = 0, from_up = 0;
+    MPI_Sendrecv(&up_n, 1, MPI_UINT64_T, upper_, 0, &from_lo, 1, MPI_UINT64_T, lower_, 0,
+                 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    MPI_Sendrecv(&down_n, 1, MPI_UINT64_T, lower_, 1, &from_up, 1, MPI_UINT64_T, upper_, 1,
+                 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    from_lower.resize(from_lo);
+    from_upper.resize(from_up);
+    MPI_Sendrecv(to_upper.data(), count_of(up_n), MPI_BYTE, upper_, 2, from_lower.data(),
+                 count_of(from_lo), MPI_BYTE, lower_, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    MPI_Sendrecv(to_lower.data(), count_of(down_n), MPI_BYTE, lower_, 3, from_upper.data(),
+                 count_of(from_up), MPI_BYTE, upper_, 3, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  }
+  double max(double here) override {
+    double out = here;
+    MPI_Allreduce(&here, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    return out;
+  }
+  double min(double here) override {
+    double out = here;
+    MPI_Allreduce(&here, &out, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+    return out;
+  }
+  void sum(std::vector<ExactSum>& sums) override {
+    // Integer limbs: their sum is exact in any order.
+    constexpr std::size_t width = ExactSum::kDigits + 3;
+    std::vector<std::int64_t> limbs(sums.size() * width), total(limbs.size());
+    for (std::size_t k = 0; k < sums.size(); ++k) {
+      sums[k].normalise();
+      for (std::size_t d = 0; d < width; ++d) limbs[k * width + d] = sums[k].raw()[d];
+    }
+    MPI_Allreduce(limbs.data(), total.data(), count_of(limbs.size()), MPI_INT64_T, MPI_SUM,
+                  MPI_COMM_WORLD);
+    for (std::size_t k = 0; k < sums.size(); ++k) {
+      for (std::size_t d = 0; d < width; ++d) sums[k].raw()[d] = total[k * width + d];
+      sums[k].normalise();
+    }
+  }
+  Bytes all_gather(const Bytes& here) override {
+    const int n = count_of(here.size());
+    std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(counts.size(), 0);
+    MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    std::size_t total = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) {
+      offsets[r] = count_of(total);
+      total += static_cast<std::size_t>(counts[r]);
+    }
+    Bytes out(total);
+    MPI_Allgatherv(here.data(), n, MPI_BYTE, out.data(), counts.data(), offsets.data(), MPI_BYTE,
+                   MPI_COMM_WORLD);
+    return out;
+  }
+
+ private:
+  int rank_ = 0, size_ = 1, lower_ = 0, upper_ = 0;
+};
+
+}  // namespace
+#endif
+
+std::shared_ptr<DomainComm> mpi_domain_comm() {
+#ifdef GEODEM_HAVE_MPI
+  int ready = 0;
+  MPI_Initialized(&ready);
+  if (!ready) throw std::runtime_error("MPI is not initialised (run under mpirun)");
+  return std::make_shared<MpiDomainComm>();
+#else
+  throw std::runtime_error("this geodem was built without MPI: install libopenmpi-dev and rebuild");
+#endif
+}
+
+}  // namespace geodem

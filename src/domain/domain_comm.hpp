@@ -1,0 +1,49 @@
+// The messages a decomposed domain (domain/slab_domain.hpp) needs between its ranks: bytes to
+// and from the two neighbouring slabs, and reductions that every rank receives. The engine
+// sees only this interface; MPI implements it in the app layer (distributed/), and SelfComm
+// is the one-rank case.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "base/exact_sum.hpp"
+
+namespace geodem {
+
+using Bytes = std::vector<std::byte>;
+
+class DomainComm {
+ public:
+  virtual ~DomainComm() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  // Sends `to_lower` to rank - 1 and `to_upper` to rank + 1 (ignored where there is no such
+  // rank) and receives what they sent this rank (left empty where there is none).
+  virtual void exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower,
+                        Bytes& from_upper) = 0;
+  virtual double max(double here) = 0;
+  virtual double min(double here) = 0;
+  // Adds every rank's sums element by element, exactly: the result does not depend on how the
+  // terms were shared between ranks.
+  virtual void sum(std::vector<ExactSum>& sums) = 0;
+  // Every rank's bytes, concatenated in rank order, on every rank.
+  virtual Bytes all_gather(const Bytes& here) = 0;
+};
+
+// One rank: nothing to send, reductions are the values themselves.
+class SelfComm final : public DomainComm {
+ public:
+  int rank() const override { return 0; }
+  int size() const override { return 1; }
+  void exchange(const Bytes&, const Bytes&, Bytes& from_lower, Bytes& from_upper) override {
+    from_lower.clear();
+    from_upper.clear();
+  }
+  double max(double here) override { return here; }
+  double min(double here) override { return here; }
+  void sum(std::vector<ExactSum>&) override {}
+  Bytes all_gather(const Bytes& here) override { return here; }
+};
+
+}  // namespace geodem

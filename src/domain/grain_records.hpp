@@ -1,0 +1,93 @@
+// What crosses between the ranks of a decomposed domain (domain/slab_domain.hpp), as plain
+// records packed into byte buffers: a grain's state, the history of a contact between two
+// grains or between a grain and a wall, and the per-step state of a ghost.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+#include "base/dim.hpp"
+#include "contacts/neighbour_list.hpp"
+#include "domain/domain_comm.hpp"
+#include "particles/particles.hpp"
+
+namespace geodem {
+
+template <int D>
+struct GrainRecord {
+  typename Dim<D>::Vec pos, vel, pos_at_build;
+  typename Dim<D>::Rot angvel;
+  typename Dim<D>::Orient orient;
+  double radius, inv_mass, inv_inertia;
+  std::uint32_t id;
+  std::uint16_t material;
+  std::uint8_t flags;
+
+  static GrainRecord of(const Particles<D>& P, std::size_t i) {
+    GrainRecord g;
+    g.pos = P.pos[i], g.vel = P.vel[i], g.pos_at_build = P.pos_at_build[i];
+    g.angvel = P.angvel[i];
+    g.orient = P.orient.empty() ? Dim<D>::identity() : P.orient[i];
+    g.radius = P.radius[i], g.inv_mass = P.inv_mass[i], g.inv_inertia = P.inv_inertia[i];
+    g.id = P.id[i], g.material = P.material[i], g.flags = P.flags[i];
+    return g;
+  }
+  void store(Particles<D>& P, std::size_t i) const {
+    P.pos[i] = pos, P.vel[i] = vel, P.pos_at_build[i] = pos_at_build;
+    P.angvel[i] = angvel;
+    if (!P.orient.empty()) P.orient[i] = orient;
+    P.radius[i] = radius, P.inv_mass[i] = inv_mass, P.inv_inertia[i] = inv_inertia;
+    P.id[i] = id, P.material[i] = material, P.flags[i] = flags;
+  }
+};
+
+// A grain-grain contact's history, keyed by the grains' ids, a < b: the spring and moment
+// springs as the list holds them for a row of grain a.
+template <int D>
+struct PairRecord {
+  std::uint32_t a, b;
+  TangentSpring<D> spring;
+  ContactExtra<D> extra;
+};
+
+template <int D>
+struct WallRecord {
+  std::uint32_t id, wall;
+  TangentSpring<D> spring;
+  ContactExtra<D> extra;
+};
+
+// What a ghost takes from its owner after every step.
+template <int D>
+struct GhostState {
+  typename Dim<D>::Vec pos, vel;
+  typename Dim<D>::Rot angvel;
+  typename Dim<D>::Orient orient;
+};
+
+// Arrays of records appended to a buffer as a count and their bytes, read back in order.
+template <typename T>
+void put_records(Bytes& out, const std::vector<T>& v) {
+  const std::uint64_t n = v.size();
+  const std::size_t at = out.size();
+  out.resize(at + sizeof n + n * sizeof(T));
+  std::memcpy(out.data() + at, &n, sizeof n);
+  if (n > 0)
+    std::memcpy(out.data() + at + sizeof n, static_cast<const void*>(v.data()), n * sizeof(T));
+}
+template <typename T>
+std::vector<T> take_records(const Bytes& in, std::size_t& at) {
+  std::uint64_t n = 0;
+  if (in.size() < at + sizeof n) throw std::runtime_error("domain message truncated");
+  std::memcpy(&n, in.data() + at, sizeof n);
+  at += sizeof n;
+  if ((in.size() - at) / sizeof(T) < n) throw std::runtime_error("domain message truncated");
+  std::vector<T> v(n);
+  if (n > 0) std::memcpy(static_cast<void*>(v.data()), in.data() + at, n * sizeof(T));
+  at += n * sizeof(T);
+  return v;
+}
+
+}  // namespace geodem

@@ -1,0 +1,70 @@
+// Spatial decomposition of a world over ranks in slabs along x (docs/parallel.md).
+//
+// Each rank owns the grains whose centre lies in its slab [cut[r], cut[r+1]) and holds ghost
+// copies of the grains of the neighbouring slabs within the ghost width (2 r_max + skin) of
+// its boundaries: every contact of an owned grain is then in the rank's list. A contact
+// between an owned grain and a ghost is computed on both ranks, from the same bits, so that
+// no force is sent back; ghosts pair with owned grains only and have no walls. On every rank
+// the grains are ordered by id and the force stage runs as one slab, so each grain sums its
+// contacts in the order of its partners' ids: the same bits for any number of ranks.
+//
+// At each neighbour-list build (all ranks together) grains that left their slab move to the
+// neighbour with the history of their contacts, the ghosts are renewed, and the list's old
+// rows are rewritten from history records keyed by grain ids. After each step the ghosts
+// take their owners' new state.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "domain/domain_comm.hpp"
+#include "domain/grain_records.hpp"
+#include "world/world.hpp"
+
+namespace geodem {
+
+template <int D>
+class SlabDomain final : public DomainHooks<D> {
+ public:
+  // Splits a world that every rank built identically (all grains, walls, materials): the cuts
+  // put equal grain counts in the slabs; each rank keeps its own grains and the contact
+  // history they had, and the world gets this domain as its hooks. Throws InputError for
+  // what is not distributed yet (clumps, spar chains, a periodic cell) and when a slab
+  // would be thinner than the ghost width.
+  static std::shared_ptr<SlabDomain> distribute(World<D>& world, std::shared_ptr<DomainComm> comm);
+
+  bool any_rank(bool here) override;
+  double min_over_ranks(double here) override;
+  double skin() const override { return skin_; }
+  void before_build(World<D>& world) override;
+  void after_integration(World<D>& world) override;
+
+  DomainComm& comm() { return *comm_; }
+  const std::vector<double>& cuts() const { return cuts_; }
+  double ghost_width() const { return ghost_width_; }
+  // Grains this rank owns (the world's other grains are ghosts).
+  std::size_t owned(const World<D>& world) const;
+  // Bytes sent to the neighbours by the last step's ghost update and the last build.
+  std::size_t halo_bytes() const { return halo_bytes_; }
+  std::size_t build_bytes() const { return build_bytes_; }
+
+ private:
+  explicit SlabDomain(std::shared_ptr<DomainComm> comm) : comm_(std::move(comm)) {}
+  int owner(double x) const;
+  void collect_history(const World<D>& world);
+  void rewrite_rows(World<D>& world) const;
+
+  std::shared_ptr<DomainComm> comm_;
+  std::vector<double> cuts_;  // size + 1 values, -inf and +inf at the ends
+  double ghost_width_ = 0.0, skin_ = 0.0;
+  // The contact history to carry into the next build (keyed by grain ids).
+  std::vector<PairRecord<D>> pairs_;
+  std::vector<WallRecord<D>> walls_;
+  // Ghost update: this rank's grains sent to the lower and upper neighbour (local indices, in
+  // the order sent), and where the ghosts from each go.
+  std::vector<std::uint32_t> send_lower_, send_upper_, recv_lower_, recv_upper_;
+  Bytes halo_out_lower_, halo_out_upper_, halo_in_lower_, halo_in_upper_;  // kept: no allocation
+  std::size_t halo_bytes_ = 0, build_bytes_ = 0;
+};
+
+}  // namespace geodem

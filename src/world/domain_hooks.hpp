@@ -1,0 +1,30 @@
+// What the step asks of a spatial decomposition of the world over several processes
+// (domain/slab_domain.hpp): the rank's world holds the grains it owns and ghost copies of
+// its neighbours' grains near its boundaries. Called a few times per step at most (never
+// per grain or contact): the step stays one function for one process and for many.
+#pragma once
+
+namespace geodem {
+
+template <int D>
+struct World;
+
+template <int D>
+class DomainHooks {
+ public:
+  virtual ~DomainHooks() = default;
+  // Whether this or any other rank needs a neighbour-list build (all build together).
+  virtual bool any_rank(bool here) = 0;
+  // The smallest of every rank's value (the automatic time step).
+  virtual double min_over_ranks(double here) = 0;
+  // The skin of every rank's list (from all grains' radii, not only this rank's).
+  virtual double skin() const = 0;
+  // Before a build: grains that left the rank's region go to their new owner with their
+  // contact history, ghosts are renewed, and the list's old rows are rewritten for the new
+  // numbering, so that the build merges the history as usual.
+  virtual void before_build(World<D>& world) = 0;
+  // After integration: the ghosts take their owners' new positions and velocities.
+  virtual void after_integration(World<D>& world) = 0;
+};
+
+}  // namespace geodem
