@@ -21,12 +21,14 @@ struct GrainRecord {
   typename Dim<D>::Rot angvel;
   typename Dim<D>::Orient orient;
   double radius, inv_mass, inv_inertia;
+  std::uint64_t key;  // the grain's place in every rank's order (domain/slab_domain.hpp)
   std::uint32_t id;
   std::uint16_t material;
   std::uint8_t flags;
 
-  static GrainRecord of(const Particles<D>& P, std::size_t i) {
+  static GrainRecord of(const Particles<D>& P, std::size_t i, std::uint64_t key) {
     GrainRecord g;
+    g.key = key;
     g.pos = P.pos[i], g.vel = P.vel[i], g.pos_at_build = P.pos_at_build[i];
     g.angvel = P.angvel[i];
     g.orient = P.orient.empty() ? Dim<D>::identity() : P.orient[i];
@@ -76,6 +78,19 @@ void put_records(Bytes& out, const std::vector<T>& v) {
   std::memcpy(out.data() + at, &n, sizeof n);
   if (n > 0)
     std::memcpy(out.data() + at + sizeof n, static_cast<const void*>(v.data()), n * sizeof(T));
+}
+// Appends the next array of records to `v` (whose capacity is kept between calls).
+template <typename T>
+void append_records(const Bytes& in, std::size_t& at, std::vector<T>& v) {
+  std::uint64_t n = 0;
+  if (in.size() < at + sizeof n) throw std::runtime_error("domain message truncated");
+  std::memcpy(&n, in.data() + at, sizeof n);
+  at += sizeof n;
+  if ((in.size() - at) / sizeof(T) < n) throw std::runtime_error("domain message truncated");
+  const std::size_t first = v.size();
+  v.resize(first + n);
+  if (n > 0) std::memcpy(static_cast<void*>(v.data() + first), in.data() + at, n * sizeof(T));
+  at += n * sizeof(T);
 }
 template <typename T>
 std::vector<T> take_records(const Bytes& in, std::size_t& at) {

@@ -6,7 +6,10 @@
 // between an owned grain and a ghost is computed on both ranks, from the same bits, so that
 // no force is sent back; ghosts pair with owned grains only and have no walls. On every rank
 // the grains are ordered by id and the force stage runs as one slab, so each grain sums its
-// contacts in the order of its partners' ids: the same bits for any number of ranks.
+// contacts in the order of its partners' keys: the same bits for any number of ranks. A key
+// is the grain's cell in a grid fixed for the whole domain, taken by its owner every
+// sort_interval list builds (as one process renumbers grains in cell order), then its id;
+// with sort_interval = 0 it is the id alone.
 //
 // At each neighbour-list build (all ranks together) grains that left their slab move to the
 // neighbour with the history of their contacts, the ghosts are renewed, and the list's old
@@ -14,6 +17,7 @@
 // take their owners' new state.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -51,13 +55,34 @@ class SlabDomain final : public DomainHooks<D> {
  private:
   explicit SlabDomain(std::shared_ptr<DomainComm> comm) : comm_(std::move(comm)) {}
   int owner(double x) const;
-  void collect_history(const World<D>& world);
-  void rewrite_rows(World<D>& world) const;
+  std::uint64_t cell_key(const typename Dim<D>::Vec& x, std::uint32_t id) const;
+  std::int64_t local_index(std::uint32_t id) const;
+  // History records (keyed by ids) of the listed contacts with a history: all of them, or
+  // those of the grains marked in `only`.
+  void collect_history(const World<D>& world, const std::vector<std::uint8_t>* only);
+  void reorder_grains(Particles<D>& P, std::size_t n_old) const;
+  void renumber_rows(World<D>& world, const std::vector<std::int32_t>& old_to_new);
 
   std::shared_ptr<DomainComm> comm_;
   std::vector<double> cuts_;  // size + 1 values, -inf and +inf at the ends
+  // The grid of the keys (the whole domain's bounding box at distribution, cells a ghost width
+  // across) and how often keys are retaken (list builds; 0: never, keys are ids).
+  typename Dim<D>::Vec grid_lo_ = Dim<D>::Vec::Zero();
+  std::array<std::uint64_t, 3> grid_dims_{1, 1, 1};
+  int sort_every_ = 0;
+  std::vector<std::uint64_t> key_;         // per local grain
+  std::vector<std::int32_t> index_of_id_;  // local index of each grain id held, else -1
+  // A build's scratch (given back at its end, but for the small buffers): the new grains'
+  // sources (key, old index or n_old + place in arrived_), the records that arrived, the
+  // grains leaving or sent as ghosts, where each source goes, and the messages.
+  using Source = std::pair<std::uint64_t, std::size_t>;
+  std::vector<Source> order_;
+  std::vector<GrainRecord<D>> arrived_, out_down_, out_up_;
+  std::vector<std::uint32_t> new_index_;
+  Bytes to_lower_, to_upper_, from_lower_, from_upper_;
   double ghost_width_ = 0.0, skin_ = 0.0;
-  // The contact history to carry into the next build (keyed by grain ids).
+  // History records to carry into the next build: from the world as distributed, or of
+  // grains that arrived.
   std::vector<PairRecord<D>> pairs_;
   std::vector<WallRecord<D>> walls_;
   // Ghost update: this rank's grains sent to the lower and upper neighbour (local indices, in
