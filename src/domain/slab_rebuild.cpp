@@ -10,6 +10,10 @@
 #include <string>
 #include <tuple>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include "base/error.hpp"
 #include "broadphase/list_history.hpp"
 #include "domain/slab_domain.hpp"
@@ -155,6 +159,9 @@ void SlabDomain<D>::before_build(World<D>& world) {
   std::vector<Source>().swap(order_);
   std::vector<GrainRecord<D>>().swap(arrived_);
   std::vector<std::uint32_t>().swap(new_index_);
+#ifdef __GLIBC__
+  malloc_trim(0);  // and to the system: freed blocks of the heap are kept by glibc otherwise
+#endif
 }
 
 // New grain k is order_[k]'s source: built one array at a time (one array of extra memory).
