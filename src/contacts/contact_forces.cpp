@@ -181,6 +181,9 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
           t.stats.sum_force += f.norm();
           ++t.stats.contacts;
           if (fn > 0.0) t.stats.elastic_energy += normal_energy(law, ri, rj, fn, delta);
+          if (t.exact.on && !(P.flags[i] & kGhost))
+            t.exact.add_contact(d, f, fn > 0.0 ? normal_energy(law, ri, rj, fn, delta) : 0.0,
+                                false);
         }
       }
     }
@@ -293,17 +296,22 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
         }
       }
       t.wall_force[L.wall[k]] += f;
-      t.wall_stiffness[L.wall[k]] +=
-          normal_stiffness(law, ri, wall_partner_radius(law, ri), fn, delta);
-      if (world.tally_wall_dashpots)
-        t.wall_dashpot[L.wall[k]] +=
-            normal_dashpot(law, ri, wall_partner_radius(law, ri), inv_m, delta);
+      const double k_wall = normal_stiffness(law, ri, wall_partner_radius(law, ri), fn, delta);
+      t.wall_stiffness[L.wall[k]] += k_wall;
+      const double c_wall =
+          world.tally_wall_dashpots
+              ? normal_dashpot(law, ri, wall_partner_radius(law, ri), inv_m, delta)
+              : 0.0;
+      t.wall_dashpot[L.wall[k]] += c_wall;
+      if (t.exact.on) t.exact.add_wall(L.wall[k], f, k_wall, c_wall);
       if constexpr (Measure) {
         t.stats.fabric_stress += (a * nrm) * f.transpose();
         t.stats.sum_force += f.norm();
         ++t.stats.wall_contacts;
-        if (fn > 0.0)
-          t.stats.elastic_energy += normal_energy(law, ri, wall_partner_radius(law, ri), fn, delta);
+        const double energy =
+            fn > 0.0 ? normal_energy(law, ri, wall_partner_radius(law, ri), fn, delta) : 0.0;
+        if (fn > 0.0) t.stats.elastic_energy += energy;
+        if (t.exact.on) t.exact.add_contact(Vec(a * nrm), f, energy, true);
       }
     }
   };
@@ -317,6 +325,36 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
 }
 
 }  // namespace
+
+// A decomposed world: the walls' sums and the contact statistics are every rank's exact sums
+// added over ranks (the rank's own, plain sums above are replaced).
+template <int D>
+void reduce_over_ranks(World<D>& world, std::vector<SlabTally<D>>& tallies, std::size_t slabs) {
+  using Tally = ExactTally<D>;
+  const std::size_t nw = world.walls.size();
+  const bool measure = world.measure_this_step;
+  std::vector<ExactSum> sums(nw * Tally::kPerWall + (measure ? Tally::kStats : 0));
+  for (std::size_t s = 0; s < slabs; ++s) {
+    const auto& t = tallies[s].exact;
+    for (std::size_t k = 0; k < t.wall.size(); ++k) sums[k].add(t.wall[k]);
+    for (std::size_t k = 0; k < t.stats.size(); ++k) sums[nw * Tally::kPerWall + k].add(t.stats[k]);
+  }
+  world.domain->sum(sums);
+  for (std::size_t w = 0; w < nw; ++w) {
+    for (int a = 0; a < D; ++a)
+      world.walls[w].force[a] = sums[w * Tally::kPerWall + static_cast<std::size_t>(a)].value();
+    world.walls[w].stiffness = sums[w * Tally::kPerWall + D].value();
+    world.walls[w].dashpot = sums[w * Tally::kPerWall + D + 1].value();
+  }
+  if (!measure) return;
+  const ExactSum* st = sums.data() + nw * Tally::kPerWall;
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < D; ++b) world.stats.fabric_stress(a, b) = st[a * D + b].value();
+  world.stats.sum_force = st[D * D].value();
+  world.stats.elastic_energy = st[D * D + 1].value();
+  world.stats.contacts = static_cast<std::size_t>(st[D * D + 2].value());
+  world.stats.wall_contacts = static_cast<std::size_t>(st[D * D + 3].value());
+}
 
 template <int D>
 void compute_contact_forces(World<D>& world) {
@@ -337,6 +375,7 @@ void compute_contact_forces(World<D>& world) {
     t.wall_dashpot.assign(nw, 0.0);
     t.cell_stiffness = Vec::Zero();
     t.cell_fabric.setZero();
+    t.exact.reset(world.domain != nullptr, nw, world.measure_this_step);
   }
   // One instantiation per combination, so that a plain packing pays for no option.
   auto run = [&]<bool Measure, bool Extras>() {
@@ -385,6 +424,7 @@ void compute_contact_forces(World<D>& world) {
       world.walls[w].dashpot += t.wall_dashpot[w];
     }
   }
+  if (world.domain) reduce_over_ranks(world, tallies, slabs);
 }
 
 template void compute_contact_forces<2>(World<2>&);

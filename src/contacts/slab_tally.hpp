@@ -5,9 +5,41 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/exact_sum.hpp"
 #include "world/world.hpp"
 
 namespace geodem {
+
+// A decomposed world's sums (World::domain), taken exactly so that they do not depend on how
+// the grains are shared between ranks (docs/parallel.md): per wall its force (D components),
+// stiffness and dashpot; on measuring steps the contact statistics, each contact counted on
+// the rank that owns the first grain of its row.
+template <int D>
+struct ExactTally {
+  using Vec = typename Dim<D>::Vec;
+  static constexpr std::size_t kPerWall = D + 2, kStats = D * D + 4;
+  bool on = false;
+  std::vector<ExactSum> wall, stats;  // stats: fabric (row-major), |f|, energy, counts
+
+  void reset(bool domain, std::size_t walls, bool measure) {
+    on = domain;
+    wall.assign(on ? walls * kPerWall : 0, ExactSum{});
+    stats.assign(on && measure ? kStats : 0, ExactSum{});
+  }
+  void add_wall(std::size_t w, const Vec& f, double stiffness, double dashpot) {
+    for (int a = 0; a < D; ++a) wall[w * kPerWall + static_cast<std::size_t>(a)].add(f[a]);
+    wall[w * kPerWall + D].add(stiffness);
+    wall[w * kPerWall + D + 1].add(dashpot);
+  }
+  // d: the branch (or lever) the stress sums d f^T over.
+  void add_contact(const Vec& d, const Vec& f, double energy, bool with_wall) {
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) stats[static_cast<std::size_t>(a * D + b)].add(d[a] * f[b]);
+    stats[D * D].add(f.norm());
+    stats[D * D + 1].add(energy);
+    stats[D * D + (with_wall ? 3 : 2)].add(1.0);
+  }
+};
 
 // What one slab adds to the world's sums.
 template <int D>
@@ -22,6 +54,7 @@ struct SlabTally {
   std::vector<double> wall_dashpot;
   Vec cell_stiffness = Vec::Zero();  // periodic cell: sum of kn (d_k n_k)^2
   typename Dim<D>::Tensor cell_fabric = Dim<D>::Tensor::Zero();  // periodic cell: sum of d f^T
+  ExactTally<D> exact;
 
   void note_overlap(std::size_t i, std::int64_t partner, double ratio) {
     if (overlap_offender >= 0) return;

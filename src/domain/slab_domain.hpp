@@ -39,6 +39,7 @@ class SlabDomain final : public DomainHooks<D> {
 
   bool any_rank(bool here) override;
   double min_over_ranks(double here) override;
+  void sum(std::vector<ExactSum>& sums) override { comm_->sum(sums); }
   double skin() const override { return skin_; }
   void before_build(World<D>& world) override;
   void after_integration(World<D>& world) override;

@@ -4,6 +4,10 @@
 // per grain or contact): the step stays one function for one process and for many.
 #pragma once
 
+#include <vector>
+
+#include "base/exact_sum.hpp"
+
 namespace geodem {
 
 template <int D>
@@ -17,6 +21,8 @@ class DomainHooks {
   virtual bool any_rank(bool here) = 0;
   // The smallest of every rank's value (the automatic time step).
   virtual double min_over_ranks(double here) = 0;
+  // Every rank's sums added, exactly (base/exact_sum.hpp), in place.
+  virtual void sum(std::vector<ExactSum>& sums) = 0;
   // The skin of every rank's list (from all grains' radii, not only this rank's).
   virtual double skin() const = 0;
   // Before a build: grains that left the rank's region go to their new owner with their

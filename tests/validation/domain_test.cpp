@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <barrier>
+#include <cmath>
 #include <thread>
 
 #include "domain/slab_domain.hpp"
@@ -87,8 +88,55 @@ template <int D>
 void advance(World<D>& w) {
   for (int k = 0; k < kSteps; ++k) {
     if (k == 100) w.walls[2].velocity = vec<D>(0.05, 0.0, 0.0);  // the floor slides
+    w.measure_this_step = k + 1 == kSteps;                       // the statistics of the last step
     step(w);
   }
+}
+
+// What the contact stage summed over the whole domain: the walls' forces, stiffnesses and
+// the contact statistics of the last step.
+template <int D>
+struct Sums {
+  std::vector<typename Dim<D>::Vec> force;
+  std::vector<double> stiffness;
+  typename Dim<D>::Tensor fabric;
+  double sum_force, energy;
+  std::size_t contacts, wall_contacts;
+};
+template <int D>
+Sums<D> sums_of(const World<D>& w) {
+  Sums<D> s{{},
+            {},
+            w.stats.fabric_stress,
+            w.stats.sum_force,
+            w.stats.elastic_energy,
+            w.stats.contacts,
+            w.stats.wall_contacts};
+  for (const auto& wall : w.walls)
+    s.force.push_back(wall.force), s.stiffness.push_back(wall.stiffness);
+  return s;
+}
+// Bitwise (exact sums of ranks) or within `rel` of the largest component (a one-process run
+// sums in its own order).
+template <int D>
+void expect_sums(const Sums<D>& a, const Sums<D>& b, double rel) {
+  auto near = [rel](double x, double y, double scale) {
+    return rel == 0.0 ? x == y : std::abs(x - y) <= rel * scale;
+  };
+  for (std::size_t k = 0; k < a.force.size(); ++k) {
+    const double scale = a.force[k].cwiseAbs().maxCoeff() + 1e-300;
+    for (int c = 0; c < D; ++c)
+      EXPECT_TRUE(near(a.force[k][c], b.force[k][c], scale))
+          << "wall " << k << ": " << a.force[k][c] << " against " << b.force[k][c];
+    EXPECT_TRUE(near(a.stiffness[k], b.stiffness[k], a.stiffness[k])) << "wall " << k;
+  }
+  const double fs = a.fabric.cwiseAbs().maxCoeff();
+  for (int r = 0; r < D; ++r)
+    for (int c = 0; c < D; ++c) EXPECT_TRUE(near(a.fabric(r, c), b.fabric(r, c), fs));
+  EXPECT_TRUE(near(a.sum_force, b.sum_force, a.sum_force));
+  EXPECT_TRUE(near(a.energy, b.energy, a.energy));
+  EXPECT_EQ(a.contacts, b.contacts);
+  EXPECT_EQ(a.wall_contacts, b.wall_contacts);
 }
 
 // The packing advanced on `ranks` ranks (threads); also says whether grains changed ranks.
@@ -158,7 +206,9 @@ class DomainTest : public ::testing::Test {};
 TYPED_TEST_SUITE(DomainTest, Dims, DimNames);
 
 // Grains kept in id order (sort_interval = 0): three ranks end in the bits of one process
-// with its grains in id order and one force slab.
+// with its grains in id order and one force slab; the walls' forces and the contact
+// statistics, summed exactly over ranks, are the same on every rank and within 1e-12 of
+// the one process's sums.
 TYPED_TEST(DomainTest, ThreeRanksGiveTheBitsOfOneProcess) {
   constexpr int D = TypeParam::value;
   for (bool extras : {false, true}) {
@@ -174,6 +224,10 @@ TYPED_TEST(DomainTest, ThreeRanksGiveTheBitsOfOneProcess) {
                                         one.particles.angvel[i], true};
     expect_same<D>(by_id(parts, one.particles.size(), ghosts), reference);
     for (const auto& w : parts) EXPECT_EQ(w.dt, one.dt);
+    // Every rank holds the domain's sums; one process sums in its own order (1e-12).
+    EXPECT_GT(one.stats.wall_contacts, 0u);
+    for (const auto& w : parts) expect_sums<D>(sums_of(w), sums_of(parts[0]), 0.0);
+    expect_sums<D>(sums_of(one), sums_of(parts[0]), 1e-12);
     EXPECT_GT(ghosts, 0u);
     EXPECT_TRUE(moved) << "no grain changed rank: the case does not test migration";
     EXPECT_GE(one.nlist.builds, 4u);
@@ -181,7 +235,8 @@ TYPED_TEST(DomainTest, ThreeRanksGiveTheBitsOfOneProcess) {
 }
 
 // Grains put in cell order every 3 list builds (keys retaken by their owners): 1, 2 and 3
-// ranks end in the same bits, and the ranks' grains did leave id order.
+// ranks end in the same bits, grains and the domain's sums, and the ranks' grains did leave
+// id order.
 TYPED_TEST(DomainTest, RanksInCellOrderAgree) {
   constexpr int D = TypeParam::value;
   for (bool extras : {false, true}) {
@@ -198,7 +253,10 @@ TYPED_TEST(DomainTest, RanksInCellOrderAgree) {
       expect_same<D>(by_id(parts, n, ghosts), reference);
       EXPECT_GT(ghosts, 0u);
       EXPECT_TRUE(moved);
-      for (const auto& w : parts) EXPECT_EQ(w.dt, one[0].dt);
+      for (const auto& w : parts) {
+        EXPECT_EQ(w.dt, one[0].dt);
+        expect_sums<D>(sums_of(w), sums_of(one[0]), 0.0);  // exact: the same bits
+      }
     }
   }
 }
