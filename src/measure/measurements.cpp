@@ -10,11 +10,29 @@
 
 namespace geodem {
 
+namespace {
+
+// Sum of term(i) over the grains: in blocks (base/parallel.hpp), or, in a decomposed world
+// (docs/parallel.md), over each rank's own grains exactly and added over ranks, so that every
+// rank has the domain's sum, the same for any number of ranks.
+template <int D, typename Term>
+double grain_sum(const World<D>& world, Term&& term) {
+  const auto& P = world.particles;
+  if (!world.domain) return ordered_sum(P.size(), world.threads, 0.0, term);
+  std::vector<ExactSum> s(1);
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (!(P.flags[i] & kGhost)) s[0].add(term(i));
+  world.domain->sum(s);
+  return s[0].value();
+}
+
+}  // namespace
+
 // Bodies are the grains that are not clump members, and the clumps.
 template <int D>
 double kinetic_energy(const World<D>& world) {
   const auto& P = world.particles;
-  double e = ordered_sum(P.size(), world.threads, 0.0, [&](std::size_t i) {
+  double e = grain_sum(world, [&](std::size_t i) {
     if (P.inv_mass[i] == 0.0 || P.member(i)) return 0.0;
     return 0.5 * P.vel[i].squaredNorm() / P.inv_mass[i] +
            0.5 * Dim<D>::rot_norm2(P.angvel[i]) / P.inv_inertia[i];
@@ -33,7 +51,7 @@ double kinetic_energy(const World<D>& world) {
 template <int D>
 double gravity_energy(const World<D>& world) {
   const auto& P = world.particles;
-  double e = -ordered_sum(P.size(), world.threads, 0.0, [&](std::size_t i) {
+  double e = -grain_sum(world, [&](std::size_t i) {
     return P.inv_mass[i] > 0.0 && !P.member(i) ? P.pos[i].dot(world.gravity) / P.inv_mass[i] : 0.0;
   });
   const auto& C = world.clumps;
@@ -45,8 +63,14 @@ template <int D>
 double body_weight(const World<D>& world) {
   const auto& P = world.particles;
   double m = 0.0;
-  for (std::size_t i = 0; i < P.size(); ++i)
-    if (P.inv_mass[i] > 0.0 && !P.member(i)) m += 1.0 / P.inv_mass[i];
+  if (world.domain) {
+    m = grain_sum(world, [&](std::size_t i) {
+      return P.inv_mass[i] > 0.0 && !P.member(i) ? 1.0 / P.inv_mass[i] : 0.0;
+    });
+  } else {
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (P.inv_mass[i] > 0.0 && !P.member(i)) m += 1.0 / P.inv_mass[i];
+  }
   for (double im : world.clumps.inv_mass) m += 1.0 / im;
   return m * world.gravity.norm();
 }
@@ -54,15 +78,24 @@ double body_weight(const World<D>& world) {
 template <int D>
 double solid_volume(const World<D>& world) {
   const auto& P = world.particles;
-  double v = ordered_sum(P.size(), world.threads, 0.0, [&](std::size_t i) {
-    return P.member(i) ? 0.0 : Dim<D>::volume(P.radius[i]);
-  });
+  double v = grain_sum(
+      world, [&](std::size_t i) { return P.member(i) ? 0.0 : Dim<D>::volume(P.radius[i]); });
   for (double cv : world.clumps.volume) v += cv;
   return v;
 }
 
 template <int D>
 std::size_t intact_bonds(const World<D>& world) {
+  if (world.domain) {  // each bond counted on the rank that owns its row's grain
+    const auto& L = world.nlist;
+    const auto& P = world.particles;
+    std::vector<ExactSum> n(1);
+    for (std::size_t i = 0; i + 1 < L.start.size() && !L.extra.empty(); ++i)
+      if (!(P.flags[i] & kGhost))
+        for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) n[0].add(L.extra[k].bonded);
+    world.domain->sum(n);
+    return static_cast<std::size_t>(n[0].value());
+  }
   std::size_t n = 0;
   for (const auto& e : world.nlist.extra) n += e.bonded;
   return n;
@@ -76,11 +109,14 @@ double unbalanced_force_ratio(const World<D>& world) {
   if (nc == 0 || world.stats.sum_force <= 0.0) return std::numeric_limits<double>::quiet_NaN();
   // Fixed and held grains and clump members do not count.
   auto counts = [&](std::size_t i) { return P.inv_mass[i] != 0.0 && P.free_body(i); };
-  double sum = ordered_sum(P.size(), world.threads, 0.0, [&](std::size_t i) {
+  double sum = grain_sum(world, [&](std::size_t i) {
     return counts(i) ? (P.force[i] + world.gravity / P.inv_mass[i]).norm() : 0.0;
   });
-  std::size_t nfree = ordered_sum(P.size(), world.threads, std::size_t{0},
-                                  [&](std::size_t i) -> std::size_t { return counts(i) ? 1 : 0; });
+  std::size_t nfree =
+      world.domain ? static_cast<std::size_t>(
+                         grain_sum(world, [&](std::size_t i) { return counts(i) ? 1.0 : 0.0; }))
+                   : ordered_sum(P.size(), world.threads, std::size_t{0},
+                                 [&](std::size_t i) -> std::size_t { return counts(i) ? 1 : 0; });
   const auto& C = world.clumps;  // resultants summed at the last integration
   for (std::size_t c = 0; c < C.size(); ++c) {
     if (!C.held.empty() && C.held[c]) continue;

@@ -34,9 +34,16 @@ double solid_volume(const World<D>& world);
 template <int D>
 std::size_t intact_bonds(const World<D>& world);
 
-// Number of bodies (free grains and clumps; fixed grains included).
+// Number of bodies (free grains and clumps; fixed grains included); in a decomposed world
+// (docs/parallel.md) the whole domain's, every rank's own grains counted.
 template <int D>
 std::size_t body_count(const World<D>& world) {
+  if (world.domain) {
+    std::vector<ExactSum> n(1);
+    for (auto f : world.particles.flags) n[0].add((f & kGhost) ? 0.0 : 1.0);
+    world.domain->sum(n);
+    return static_cast<std::size_t>(n[0].value());
+  }
   std::size_t members = 0;
   for (auto c : world.particles.clump) members += c != kNoClump;
   return world.particles.size() - members + world.clumps.size();
