@@ -1,6 +1,7 @@
 // What crosses between the ranks of a decomposed domain (domain/slab_domain.hpp), as plain
-// records packed into byte buffers: a grain's state, the history of a contact between two
-// grains or between a grain and a wall, and the per-step state of a ghost.
+// records packed into byte buffers: a grain's state, and the history of a contact between two
+// grains or between a grain and a wall. (The per-step update of a ghost packs its position,
+// velocity, angular velocity and, if tracked, orientation: SlabDomain::after_integration.)
 #pragma once
 
 #include <cstdint>
@@ -59,14 +60,6 @@ struct WallRecord {
   std::uint32_t id, wall;
   TangentSpring<D> spring;
   ContactExtra<D> extra;
-};
-
-// What a ghost takes from its owner after every step.
-template <int D>
-struct GhostState {
-  typename Dim<D>::Vec pos, vel;
-  typename Dim<D>::Rot angvel;
-  typename Dim<D>::Orient orient;
 };
 
 // Arrays of records appended to a buffer as a count and their bytes, read back in order.

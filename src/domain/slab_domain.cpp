@@ -169,27 +169,37 @@ void SlabDomain<D>::collect_history(const World<D>& world, const std::vector<std
 
 template <int D>
 void SlabDomain<D>::after_integration(World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
+  using Rot = typename Dim<D>::Rot;
+  using Orient = typename Dim<D>::Orient;
   auto& P = world.particles;
+  // Per ghost: position, velocity, angular velocity, and the orientation only if tracked.
   const bool track = !P.orient.empty();
+  const std::size_t size = 2 * sizeof(Vec) + sizeof(Rot) + (track ? sizeof(Orient) : 0);
   auto pack = [&](const std::vector<std::uint32_t>& idx, Bytes& out) {
-    out.resize(idx.size() * sizeof(GhostState<D>));
-    for (std::size_t k = 0; k < idx.size(); ++k) {
-      const std::uint32_t i = idx[k];
-      const GhostState<D> g{P.pos[i], P.vel[i], P.angvel[i],
-                            track ? P.orient[i] : Dim<D>::identity()};
-      std::memcpy(out.data() + k * sizeof g, static_cast<const void*>(&g), sizeof g);
+    out.resize(idx.size() * size);
+    std::byte* at = out.data();
+    auto put = [&at](const auto& v) {
+      std::memcpy(at, static_cast<const void*>(&v), sizeof v);
+      at += sizeof v;
+    };
+    for (const std::uint32_t i : idx) {
+      put(P.pos[i]), put(P.vel[i]), put(P.angvel[i]);
+      if (track) put(P.orient[i]);
     }
   };
   auto unpack = [&](const Bytes& in, const std::vector<std::uint32_t>& idx) {
-    if (in.size() != idx.size() * sizeof(GhostState<D>))
+    if (in.size() != idx.size() * size)
       throw std::runtime_error("ghost update of " + std::to_string(in.size()) + " bytes for " +
                                std::to_string(idx.size()) + " ghosts");
-    for (std::size_t k = 0; k < idx.size(); ++k) {
-      GhostState<D> g;
-      std::memcpy(static_cast<void*>(&g), in.data() + k * sizeof g, sizeof g);
-      const std::uint32_t i = idx[k];
-      P.pos[i] = g.pos, P.vel[i] = g.vel, P.angvel[i] = g.angvel;
-      if (track) P.orient[i] = g.orient;
+    const std::byte* at = in.data();
+    auto take = [&at](auto& v) {
+      std::memcpy(static_cast<void*>(&v), at, sizeof v);
+      at += sizeof v;
+    };
+    for (const std::uint32_t i : idx) {
+      take(P.pos[i]), take(P.vel[i]), take(P.angvel[i]);
+      if (track) take(P.orient[i]);
     }
   };
   pack(send_lower_, halo_out_lower_);
