@@ -1,6 +1,7 @@
 #include "domain/slab_domain.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -132,14 +133,96 @@ std::size_t SlabDomain<D>::owned(const World<D>& world) const {
       std::count_if(f.begin(), f.end(), [](std::uint8_t v) { return !(v & kGhost); }));
 }
 
+namespace {
+// Adds the wall time of a scope to a total.
+class Timed {
+ public:
+  explicit Timed(double& total) : total_(total) {}
+  ~Timed() { total_ += std::chrono::duration<double>(Clock::now() - t0_).count(); }
+  Timed(const Timed&) = delete;
+  Timed& operator=(const Timed&) = delete;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  double& total_;
+  Clock::time_point t0_ = Clock::now();
+};
+}  // namespace
+
 template <int D>
 bool SlabDomain<D>::any_rank(bool here) {
+  Timed t(comm_seconds_);
   return comm_->max(here ? 1.0 : 0.0) > 0.5;
 }
 
 template <int D>
 double SlabDomain<D>::min_over_ranks(double here) {
+  Timed t(comm_seconds_);
   return comm_->min(here);
+}
+
+template <int D>
+void SlabDomain<D>::exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower,
+                             Bytes& from_upper) {
+  Timed t(comm_seconds_);
+  comm_->exchange(to_lower, to_upper, from_lower, from_upper);
+}
+
+template <int D>
+void SlabDomain<D>::sum(std::vector<ExactSum>& sums) {
+  Timed t(comm_seconds_);
+  comm_->sum(sums);
+}
+
+// New cuts: each rank's step time since the last move, less its time in messages, spread over
+// its grains, binned along x and gathered; every rank then cuts the same histogram at equal
+// shares. A cut moves at most to a ghost width from its neighbours' old cuts, so that a grain
+// changes ranks by one at most, and inner slabs stay a ghost width across.
+template <int D>
+void SlabDomain<D>::rebalance(const World<D>& world) {
+  const auto& P = world.particles;
+  const int ranks = comm_->size();
+  double work = -comm_seconds_;
+  for (double s : world.stage_seconds) work += s;
+  const double spent = std::max(work - work_at_rebalance_, 0.0);
+  work_at_rebalance_ = work;
+  constexpr std::size_t kBins = 1024;
+  const double x0 = grid_lo_.x(), span = static_cast<double>(grid_dims_[0]) * ghost_width_;
+  std::vector<double> bins(kBins, 0.0);
+  const std::size_t mine = owned(world);
+  const double per_grain = mine > 0 ? spent / static_cast<double>(mine) : 0.0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    if (P.flags[i] & kGhost) continue;
+    const double b = std::floor((P.pos[i].x() - x0) / span * static_cast<double>(kBins));
+    bins[static_cast<std::size_t>(std::clamp(b, 0.0, static_cast<double>(kBins - 1)))] += per_grain;
+  }
+  Bytes out(kBins * sizeof(double));
+  std::memcpy(out.data(), bins.data(), out.size());
+  const Bytes all = comm_->all_gather(out);
+  std::vector<double> total(kBins, 0.0);
+  for (int r = 0; r < ranks; ++r)  // in rank order: the same sums on every rank
+    for (std::size_t b = 0; b < kBins; ++b) {
+      double v;
+      std::memcpy(&v, all.data() + (static_cast<std::size_t>(r) * kBins + b) * sizeof v, sizeof v);
+      total[b] += v;
+    }
+  double sum = 0.0;
+  for (double v : total) sum += v;
+  if (!(sum > 0.0)) return;
+  const std::vector<double> old = cuts_;
+  double cumulative = 0.0;
+  std::size_t b = 0;
+  for (int q = 1; q < ranks; ++q) {
+    const double target = sum * q / ranks;
+    while (b < kBins && cumulative + total[b] < target) cumulative += total[b++];
+    const double inside = b < kBins && total[b] > 0.0 ? (target - cumulative) / total[b] : 0.0;
+    double cut = x0 + span * (static_cast<double>(b) + inside) / static_cast<double>(kBins);
+    const auto uq = static_cast<std::size_t>(q);
+    double lo = old[uq - 1] + ghost_width_, hi = old[uq + 1] - ghost_width_;
+    if (q > 1) lo = std::max(lo, cuts_[uq - 1] + ghost_width_);
+    cut = std::min(std::max(cut, lo), hi);
+    cuts_[uq] = lo <= hi ? cut : old[uq];
+  }
 }
 
 template <int D>
@@ -204,7 +287,7 @@ void SlabDomain<D>::after_integration(World<D>& world) {
   };
   pack(send_lower_, halo_out_lower_);
   pack(send_upper_, halo_out_upper_);
-  comm_->exchange(halo_out_lower_, halo_out_upper_, halo_in_lower_, halo_in_upper_);
+  exchange(halo_out_lower_, halo_out_upper_, halo_in_lower_, halo_in_upper_);
   unpack(halo_in_lower_, recv_lower_);
   unpack(halo_in_upper_, recv_upper_);
   halo_bytes_ = halo_out_lower_.size() + halo_out_upper_.size();

@@ -39,12 +39,16 @@ class SlabDomain final : public DomainHooks<D> {
 
   bool any_rank(bool here) override;
   double min_over_ranks(double here) override;
-  void sum(std::vector<ExactSum>& sums) override { comm_->sum(sums); }
+  void sum(std::vector<ExactSum>& sums) override;
   double skin() const override { return skin_; }
   void before_build(World<D>& world) override;
   void after_integration(World<D>& world) override;
 
   DomainComm& comm() { return *comm_; }
+  // Every this many list builds the cuts move so that each slab holds the same work, from
+  // each rank's measured step time per grain (0: never). Results do not depend on it: any
+  // cuts give the same bits.
+  int rebalance_every = 10;
   const std::vector<double>& cuts() const { return cuts_; }
   double ghost_width() const { return ghost_width_; }
   // Grains this rank owns (the world's other grains are ghosts).
@@ -56,6 +60,9 @@ class SlabDomain final : public DomainHooks<D> {
  private:
   explicit SlabDomain(std::shared_ptr<DomainComm> comm) : comm_(std::move(comm)) {}
   int owner(double x) const;
+  void rebalance(const World<D>& world);
+  // comm_->exchange, its time (waiting included) counted in comm_seconds_.
+  void exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower, Bytes& from_upper);
   std::uint64_t cell_key(const typename Dim<D>::Vec& x, std::uint32_t id) const;
   std::int64_t local_index(std::uint32_t id) const;
   // History records (keyed by ids) of the listed contacts with a history: all of them, or
@@ -91,6 +98,8 @@ class SlabDomain final : public DomainHooks<D> {
   std::vector<std::uint32_t> send_lower_, send_upper_, recv_lower_, recv_upper_;
   Bytes halo_out_lower_, halo_out_upper_, halo_in_lower_, halo_in_upper_;  // kept: no allocation
   std::size_t halo_bytes_ = 0, build_bytes_ = 0;
+  // The rank's time in messages (waiting included) and its work when the cuts last moved.
+  double comm_seconds_ = 0.0, work_at_rebalance_ = 0.0;
 };
 
 }  // namespace geodem

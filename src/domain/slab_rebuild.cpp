@@ -33,6 +33,9 @@ void SlabDomain<D>::before_build(World<D>& world) {
   auto& P = world.particles;
   const int me = comm_->rank(), ranks = comm_->size();
   const std::size_t n_old = P.size();
+  if (rebalance_every > 0 && ranks > 1 && world.nlist.builds > 0 &&
+      world.nlist.builds % static_cast<std::uint64_t>(rebalance_every) == 0)
+    rebalance(world);
   // Every sort_interval builds (counted alike on every rank) each owner retakes its grains'
   // keys from their cells now: neighbours then sit close in memory, as on one process.
   if (sort_every_ > 0 && world.nlist.builds % static_cast<std::uint64_t>(sort_every_) == 0)
@@ -78,7 +81,7 @@ void SlabDomain<D>::before_build(World<D>& world) {
   };
   migration(down, to_lower_);
   migration(up, to_upper_);
-  comm_->exchange(to_lower_, to_upper_, from_lower_, from_upper_);
+  exchange(to_lower_, to_upper_, from_lower_, from_upper_);
   build_bytes_ = to_lower_.size() + to_upper_.size();
   // The records sent stay here too (any that are still wanted here duplicate rows of the
   // list: the same bits, kept once).
@@ -115,7 +118,7 @@ void SlabDomain<D>::before_build(World<D>& world) {
   to_lower_.clear(), to_upper_.clear();
   put_records(to_lower_, down);
   put_records(to_upper_, up);
-  comm_->exchange(to_lower_, to_upper_, from_lower_, from_upper_);
+  exchange(to_lower_, to_upper_, from_lower_, from_upper_);
   build_bytes_ += to_lower_.size() + to_upper_.size();
   recv_lower_.clear(), recv_upper_.clear();
   for (auto [in, recv] :
