@@ -98,6 +98,8 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   world.one_slab = true;
   world.sort_interval = 0;  // the domain orders the grains (by key)
   world.rebuild_needed = true;
+  // The rank's work is counted from here (a world from a checkpoint brings its stage times).
+  for (double t : world.stage_seconds) d->work_at_rebalance_ += t;
   world.domain = d;
   return d;
 }
