@@ -202,15 +202,21 @@ void SlabDomain<D>::rebalance(const World<D>& world) {
   std::memcpy(out.data(), bins.data(), out.size());
   const Bytes all = comm_->all_gather(out);
   std::vector<double> total(kBins, 0.0);
-  for (int r = 0; r < ranks; ++r)  // in rank order: the same sums on every rank
+  double slowest = 0.0;
+  for (int r = 0; r < ranks; ++r) {  // in rank order: the same sums on every rank
+    double rank_work = 0.0;
     for (std::size_t b = 0; b < kBins; ++b) {
       double v;
       std::memcpy(&v, all.data() + (static_cast<std::size_t>(r) * kBins + b) * sizeof v, sizeof v);
       total[b] += v;
+      rank_work += v;
     }
+    slowest = std::max(slowest, rank_work);
+  }
   double sum = 0.0;
   for (double v : total) sum += v;
-  if (!(sum > 0.0)) return;
+  // Near an even share the cuts stay: moving them for timing noise costs migrations.
+  if (!(sum > 0.0) || slowest <= (1.0 + rebalance_tolerance) * sum / ranks) return;
   const std::vector<double> old = cuts_;
   double cumulative = 0.0;
   std::size_t b = 0;

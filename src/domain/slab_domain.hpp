@@ -46,9 +46,11 @@ class SlabDomain final : public DomainHooks<D> {
 
   DomainComm& comm() { return *comm_; }
   // Every this many list builds the cuts move so that each slab holds the same work, from
-  // each rank's measured step time per grain (0: never). Results do not depend on it: any
-  // cuts give the same bits.
+  // each rank's measured step time per grain, unless the slowest rank is within
+  // rebalance_tolerance of an even share (0: never). Results do not depend on it: any cuts
+  // give the same bits.
   int rebalance_every = 10;
+  double rebalance_tolerance = 0.05;
   const std::vector<double>& cuts() const { return cuts_; }
   double ghost_width() const { return ghost_width_; }
   // Grains this rank owns (the world's other grains are ghosts).
@@ -56,6 +58,8 @@ class SlabDomain final : public DomainHooks<D> {
   // Bytes sent to the neighbours by the last step's ghost update and the last build.
   std::size_t halo_bytes() const { return halo_bytes_; }
   std::size_t build_bytes() const { return build_bytes_; }
+  // Grains this rank sent to a neighbour to own since the distribution.
+  std::uint64_t migrated() const { return migrated_; }
 
  private:
   explicit SlabDomain(std::shared_ptr<DomainComm> comm) : comm_(std::move(comm)) {}
@@ -100,6 +104,8 @@ class SlabDomain final : public DomainHooks<D> {
   std::size_t halo_bytes_ = 0, build_bytes_ = 0;
   // The rank's time in messages (waiting included) and its work when the cuts last moved.
   double comm_seconds_ = 0.0, work_at_rebalance_ = 0.0;
+  int builds_since_rebalance_ = 0;
+  std::uint64_t migrated_ = 0;
 };
 
 }  // namespace geodem

@@ -33,9 +33,11 @@ void SlabDomain<D>::before_build(World<D>& world) {
   auto& P = world.particles;
   const int me = comm_->rank(), ranks = comm_->size();
   const std::size_t n_old = P.size();
-  if (rebalance_every > 0 && ranks > 1 && world.nlist.builds > 0 &&
-      world.nlist.builds % static_cast<std::uint64_t>(rebalance_every) == 0)
+  // (builds counted from the distribution: every rank builds together, so the same count)
+  if (rebalance_every > 0 && ranks > 1 && ++builds_since_rebalance_ > rebalance_every) {
     rebalance(world);
+    builds_since_rebalance_ = 1;
+  }
   // Every sort_interval builds (counted alike on every rank) each owner retakes its grains'
   // keys from their cells now: neighbours then sit close in memory, as on one process.
   if (sort_every_ > 0 && world.nlist.builds % static_cast<std::uint64_t>(sort_every_) == 0)
@@ -63,6 +65,7 @@ void SlabDomain<D>::before_build(World<D>& world) {
     }
   }
   // Grains that leave go with every history record they are part of.
+  migrated_ += down.size() + up.size();
   collect_history(world, &leaving);
   auto migration = [&](const std::vector<GrainRecord<D>>& grains, Bytes& b) {
     std::vector<std::uint32_t> ids;
