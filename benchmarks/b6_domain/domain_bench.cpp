@@ -2,7 +2,7 @@
 // (domain/slab_domain.hpp), and measures what crosses between ranks: B6 in
 // benchmarks/README.md, the cost model of docs/parallel.md.
 //
-//   geodem_domain_bench SCENARIO.toml STEPS serial|domain
+//   geodem_domain_bench SCENARIO.toml STEPS serial|domain [REBALANCE_EVERY]
 //
 // The scene is built as `geodem run` builds it, stepped once (the first list build, and the
 // distribution), then STEPS steps are timed between barriers. Each rank prints its grains,
@@ -76,7 +76,7 @@ long status_kb(const std::string& field) {
 }
 
 template <int D>
-int run(const SceneSettings& s, long steps, bool domain) {
+int run(const SceneSettings& s, long steps, bool domain, int rebalance_every) {
   World<D> w;
   build_world<D>(s, w);
   if (!s.start_checkpoint.empty()) start_from_checkpoint(s, w);
@@ -89,6 +89,7 @@ int run(const SceneSettings& s, long steps, bool domain) {
   if (domain) {
     comm = std::make_shared<TimedComm>(mpi_domain_comm());
     d = SlabDomain<D>::distribute(w, comm);
+    d->rebalance_every = rebalance_every;
   }
   if (w.dt <= 0.0) update_timestep(w);
   w.measure_this_step = false;  // the runners measure on their record steps only
@@ -124,8 +125,9 @@ int run(const SceneSettings& s, long steps, bool domain) {
 }  // namespace geodem
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: geodem_domain_bench SCENARIO.toml STEPS serial|domain\n");
+  if (argc != 4 && argc != 5) {
+    std::fprintf(
+        stderr, "usage: geodem_domain_bench SCENARIO.toml STEPS serial|domain [REBALANCE_EVERY]\n");
     return 2;
   }
   MPI_Init(&argc, &argv);
@@ -135,7 +137,9 @@ int main(int argc, char** argv) {
     const geodem::SceneSettings s = geodem::read_scene(root, argv[1]);
     const long steps = std::atol(argv[2]);
     const bool domain = std::strcmp(argv[3], "domain") == 0;
-    rc = s.dimension == 2 ? geodem::run<2>(s, steps, domain) : geodem::run<3>(s, steps, domain);
+    const int rebalance = argc == 5 ? std::atoi(argv[4]) : 0;
+    rc = s.dimension == 2 ? geodem::run<2>(s, steps, domain, rebalance)
+                          : geodem::run<3>(s, steps, domain, rebalance);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "geodem_domain_bench: %s\n", e.what());
     MPI_Abort(MPI_COMM_WORLD, 1);

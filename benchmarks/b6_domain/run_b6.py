@@ -7,7 +7,8 @@ that dense bed on one process and decomposed over 1, 2 and 4 ranks
 (geodem_domain_bench), one run after the other. Prints each rank's grains, ghosts, ghost
 update bytes, message time and resident memory, and the whole run's rate.
 
-usage: run_b6.py [--n 20000 200000] [--steps 2000] [--ranks 1 2 4] [--work DIR] [--build DIR]
+usage: run_b6.py [--n 20000 200000] [--steps 2000] [--ranks 1 2 4] [--rebalance B] [--work DIR]
+                 [--build DIR]
 """
 import argparse
 import math
@@ -43,6 +44,8 @@ def main(argv):
     ap.add_argument("--n", type=int, nargs="+", default=[20000, 200000])
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2, 4])
+    ap.add_argument("--rebalance", type=int, default=0,
+                    help="move the cuts every this many list builds (0: never)")
     ap.add_argument("--work", default=str(HERE.parent / "results" / "b6"))
     ap.add_argument("--build", default=str(HERE.parent.parent / "build"))
     a = ap.parse_args(argv[1:])
@@ -64,7 +67,7 @@ def main(argv):
         subprocess.run([str(bench), str(dense), str(a.steps), "serial"], check=True, env=env)
         for k in a.ranks:
             subprocess.run(["mpirun", "-n", str(k), "--bind-to", "none", str(bench), str(dense),
-                            str(a.steps), "domain"], check=True, env=env)
+                            str(a.steps), "domain", str(a.rebalance)], check=True, env=env)
     return 0
 
 

@@ -47,9 +47,10 @@ class SlabDomain final : public DomainHooks<D> {
   DomainComm& comm() { return *comm_; }
   // Every this many list builds the cuts move so that each slab holds the same work, from
   // each rank's measured step time per grain, unless the slowest rank is within
-  // rebalance_tolerance of an even share (0: never). Results do not depend on it: any cuts
+  // rebalance_tolerance of an even share (0, the default: never; on B2's bed every 10 builds
+  // over-corrected at 20,000 grains, docs/parallel.md). Results do not depend on it: any cuts
   // give the same bits.
-  int rebalance_every = 10;
+  int rebalance_every = 0;
   double rebalance_tolerance = 0.05;
   const std::vector<double>& cuts() const { return cuts_; }
   double ghost_width() const { return ghost_width_; }
