@@ -30,6 +30,19 @@ void merge_history(const std::uint32_t* old_other, const T* old_value, std::size
   while (a < old_n) dropped(old_value[a++]);
 }
 
+// Sorts the entries [b, e) of a row by partner, moving each spring (and moment springs and
+// bond, when `extra` is given) along. Rows are short: insertion sort.
+template <typename Spring, typename Extra>
+void sort_row_by_partner(std::uint32_t* other, Spring* spring, Extra* extra, std::uint32_t b,
+                         std::uint32_t e) {
+  for (std::uint32_t x = b + 1; x < e; ++x)
+    for (std::uint32_t y = x; y > b && other[y - 1] > other[y]; --y) {
+      std::swap(other[y - 1], other[y]);
+      std::swap(spring[y - 1], spring[y]);
+      if (extra) std::swap(extra[y - 1], extra[y]);
+    }
+}
+
 // Whether a value is all zero bits (+0.0 everywhere): a pair whose history is that starts
 // from exactly what an unlisted pair starts from.
 template <typename T>

@@ -77,14 +77,9 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
         scratch.extra[slot] = e;
       }
     }
-  // Rows are short: insertion sort by partner, moving the spring along.
   for (std::size_t i = 0; i < n; ++i)
-    for (std::uint32_t x = start[i] + 1; x < start[i + 1]; ++x)
-      for (std::uint32_t y = x; y > start[i] && scratch.other[y - 1] > scratch.other[y]; --y) {
-        std::swap(scratch.other[y - 1], scratch.other[y]);
-        std::swap(scratch.spring[y - 1], scratch.spring[y]);
-        if (extras) std::swap(scratch.extra[y - 1], scratch.extra[y]);
-      }
+    sort_row_by_partner(scratch.other.data(), scratch.spring.data(),
+                        extras ? scratch.extra.data() : nullptr, start[i], start[i + 1]);
   // Grain-wall and grain-spar rows keep their entries; only the rows move.
   auto move_rows = [&](const std::vector<std::uint32_t>& o_start,
                        const std::vector<std::uint32_t>& o_idx, const std::vector<Spring>& o_spring,

@@ -178,12 +178,12 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
             normal_stiffness(*law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
       }
       if constexpr (Measure) {
-        if (t.exact.on && !(P.flags[i] & kGhost))
-          t.exact.add_contact(d, f, fn > 0.0 ? normal_energy(*law, ri, rj, fn, delta) : 0.0, false);
+        const double energy = fn > 0.0 ? normal_energy(*law, ri, rj, fn, delta) : 0.0;
+        if (t.exact.on && !(P.flags[i] & kGhost)) t.exact.add_contact(d, f, energy, false);
         t.stats.fabric_stress += d * f.transpose();
         t.stats.sum_force += f.norm();
         ++t.stats.contacts;
-        if (fn > 0.0) t.stats.elastic_energy += normal_energy(*law, ri, rj, fn, delta);
+        if (fn > 0.0) t.stats.elastic_energy += energy;
       }
     }
     n = 0;

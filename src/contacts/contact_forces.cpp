@@ -180,10 +180,9 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
           t.stats.fabric_stress += d * f.transpose();
           t.stats.sum_force += f.norm();
           ++t.stats.contacts;
-          if (fn > 0.0) t.stats.elastic_energy += normal_energy(law, ri, rj, fn, delta);
-          if (t.exact.on && !(P.flags[i] & kGhost))
-            t.exact.add_contact(d, f, fn > 0.0 ? normal_energy(law, ri, rj, fn, delta) : 0.0,
-                                false);
+          const double energy = fn > 0.0 ? normal_energy(law, ri, rj, fn, delta) : 0.0;
+          if (fn > 0.0) t.stats.elastic_energy += energy;
+          if (t.exact.on && !(P.flags[i] & kGhost)) t.exact.add_contact(d, f, energy, false);
         }
       }
     }
@@ -333,7 +332,8 @@ void reduce_over_ranks(World<D>& world, std::vector<SlabTally<D>>& tallies, std:
   using Tally = ExactTally<D>;
   const std::size_t nw = world.walls.size();
   const bool measure = world.measure_this_step;
-  std::vector<ExactSum> sums(nw * Tally::kPerWall + (measure ? Tally::kStats : 0));
+  static thread_local std::vector<ExactSum> sums;  // kept: the step allocates nothing
+  sums.assign(nw * Tally::kPerWall + (measure ? Tally::kStats : 0), ExactSum{});
   for (std::size_t s = 0; s < slabs; ++s) {
     const auto& t = tallies[s].exact;
     for (std::size_t k = 0; k < t.wall.size(); ++k) sums[k].add(t.wall[k]);

@@ -60,7 +60,8 @@ class MpiDomainComm final : public DomainComm {
   void sum(std::vector<ExactSum>& sums) override {
     // Integer limbs: their sum is exact in any order.
     constexpr std::size_t width = ExactSum::kDigits + 3;
-    std::vector<std::int64_t> limbs(sums.size() * width), total(limbs.size());
+    limbs_.resize(sums.size() * width), total_.resize(limbs_.size());
+    auto &limbs = limbs_, &total = total_;
     for (std::size_t k = 0; k < sums.size(); ++k) {
       sums[k].normalise();
       for (std::size_t d = 0; d < width; ++d) limbs[k * width + d] = sums[k].raw()[d];
@@ -89,6 +90,7 @@ class MpiDomainComm final : public DomainComm {
 
  private:
   int rank_ = 0, size_ = 1, lower_ = 0, upper_ = 0;
+  std::vector<std::int64_t> limbs_, total_;  // kept: a step's reduction allocates nothing
 };
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The messages a decomposed domain (domain/slab_domain.hpp) needs between its ranks: bytes to
 // and from the two neighbouring slabs, and reductions that every rank receives. The engine
-// sees only this interface; MPI implements it in the app layer (distributed/), and SelfComm
-// is the one-rank case.
+// sees only this interface; MPI implements it in the app layer (distributed/), and the tests
+// with ranks as threads (tests/validation/domain_test.cpp).
 #pragma once
 
 #include <cstddef>
@@ -29,21 +29,6 @@ class DomainComm {
   virtual void sum(std::vector<ExactSum>& sums) = 0;
   // Every rank's bytes, concatenated in rank order, on every rank.
   virtual Bytes all_gather(const Bytes& here) = 0;
-};
-
-// One rank: nothing to send, reductions are the values themselves.
-class SelfComm final : public DomainComm {
- public:
-  int rank() const override { return 0; }
-  int size() const override { return 1; }
-  void exchange(const Bytes&, const Bytes&, Bytes& from_lower, Bytes& from_upper) override {
-    from_lower.clear();
-    from_upper.clear();
-  }
-  double max(double here) override { return here; }
-  double min(double here) override { return here; }
-  void sum(std::vector<ExactSum>&) override {}
-  Bytes all_gather(const Bytes& here) override { return here; }
 };
 
 }  // namespace geodem

@@ -37,13 +37,6 @@ struct GrainRecord {
     g.id = P.id[i], g.material = P.material[i], g.flags = P.flags[i];
     return g;
   }
-  void store(Particles<D>& P, std::size_t i) const {
-    P.pos[i] = pos, P.vel[i] = vel, P.pos_at_build[i] = pos_at_build;
-    P.angvel[i] = angvel;
-    if (!P.orient.empty()) P.orient[i] = orient;
-    P.radius[i] = radius, P.inv_mass[i] = inv_mass, P.inv_inertia[i] = inv_inertia;
-    P.id[i] = id, P.material[i] = material, P.flags[i] = flags;
-  }
 };
 
 // A grain-grain contact's history, keyed by the grains' ids, a < b: the spring and moment
@@ -85,17 +78,4 @@ void append_records(const Bytes& in, std::size_t& at, std::vector<T>& v) {
   if (n > 0) std::memcpy(static_cast<void*>(v.data() + first), in.data() + at, n * sizeof(T));
   at += n * sizeof(T);
 }
-template <typename T>
-std::vector<T> take_records(const Bytes& in, std::size_t& at) {
-  std::uint64_t n = 0;
-  if (in.size() < at + sizeof n) throw std::runtime_error("domain message truncated");
-  std::memcpy(&n, in.data() + at, sizeof n);
-  at += sizeof n;
-  if ((in.size() - at) / sizeof(T) < n) throw std::runtime_error("domain message truncated");
-  std::vector<T> v(n);
-  if (n > 0) std::memcpy(static_cast<void*>(v.data()), in.data() + at, n * sizeof(T));
-  at += n * sizeof(T);
-  return v;
-}
-
 }  // namespace geodem

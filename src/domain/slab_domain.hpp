@@ -56,9 +56,8 @@ class SlabDomain final : public DomainHooks<D> {
   double ghost_width() const { return ghost_width_; }
   // Grains this rank owns (the world's other grains are ghosts).
   std::size_t owned(const World<D>& world) const;
-  // Bytes sent to the neighbours by the last step's ghost update and the last build.
+  // Bytes sent to the neighbours by the last step's ghost update.
   std::size_t halo_bytes() const { return halo_bytes_; }
-  std::size_t build_bytes() const { return build_bytes_; }
   // Grains this rank sent to a neighbour to own since the distribution.
   std::uint64_t migrated() const { return migrated_; }
 
@@ -102,7 +101,7 @@ class SlabDomain final : public DomainHooks<D> {
   // the order sent), and where the ghosts from each go.
   std::vector<std::uint32_t> send_lower_, send_upper_, recv_lower_, recv_upper_;
   Bytes halo_out_lower_, halo_out_upper_, halo_in_lower_, halo_in_upper_;  // kept: no allocation
-  std::size_t halo_bytes_ = 0, build_bytes_ = 0;
+  std::size_t halo_bytes_ = 0;
   // The rank's time in messages (waiting included) and its work when the cuts last moved.
   double comm_seconds_ = 0.0, work_at_rebalance_ = 0.0;
   int builds_since_rebalance_ = 0;

@@ -85,7 +85,6 @@ void SlabDomain<D>::before_build(World<D>& world) {
   migration(down, to_lower_);
   migration(up, to_upper_);
   exchange(to_lower_, to_upper_, from_lower_, from_upper_);
-  build_bytes_ = to_lower_.size() + to_upper_.size();
   // The records sent stay here too (any that are still wanted here duplicate rows of the
   // list: the same bits, kept once).
   for (const Bytes* in : {&from_lower_, &from_upper_}) {
@@ -122,7 +121,6 @@ void SlabDomain<D>::before_build(World<D>& world) {
   put_records(to_lower_, down);
   put_records(to_upper_, up);
   exchange(to_lower_, to_upper_, from_lower_, from_upper_);
-  build_bytes_ += to_lower_.size() + to_upper_.size();
   recv_lower_.clear(), recv_upper_.clear();
   for (auto [in, recv] :
        {std::pair{&from_lower_, &recv_lower_}, std::pair{&from_upper_, &recv_upper_}}) {
@@ -253,17 +251,13 @@ void SlabDomain<D>::renumber_rows(World<D>& world, const std::vector<std::int32_
     if (a > b) e.roll = -e.roll;  // seen from the other grain (as in renumbering)
     if (extras) rows.extra[slot] = e;
   });
-  // Rows are short: insertion sort by partner, then duplicates dropped.
+  // Rows sorted by partner, then duplicates dropped.
   std::size_t kept = 0;
   std::uint32_t row_begin = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t b = row_begin, e = rows.start[i + 1];
-    for (std::uint32_t x = b + 1; x < e; ++x)
-      for (std::uint32_t y = x; y > b && rows.other[y - 1] > rows.other[y]; --y) {
-        std::swap(rows.other[y - 1], rows.other[y]);
-        std::swap(rows.spring[y - 1], rows.spring[y]);
-        if (extras) std::swap(rows.extra[y - 1], rows.extra[y]);
-      }
+    sort_row_by_partner(rows.other.data(), rows.spring.data(), extras ? rows.extra.data() : nullptr,
+                        b, e);
     const std::size_t first = kept;
     for (std::uint32_t x = b; x < e; ++x) {
       if (kept > first && rows.other[kept - 1] == rows.other[x]) continue;

@@ -57,8 +57,7 @@ int run(bool extras, int steps, bool domain, bool sorted, const char* out) {
     Bytes all = d->comm().all_gather(mine);
     rows.clear();
     std::size_t at = 0;
-    while (at < all.size())
-      for (const auto& f : take_records<Final>(all, at)) rows.push_back(f);
+    while (at < all.size()) append_records(all, at, rows);
     std::printf("rank %d: %zu grains (%zu ghosts), %llu builds, ghost update %zu bytes\n", rank,
                 d->owned(w), P.size() - d->owned(w),
                 static_cast<unsigned long long>(w.nlist.builds), d->halo_bytes());
