@@ -127,11 +127,15 @@ int run_main(int argc, char** argv) {
       opt.resume = true;
     }
     const bool shared = kind.shares_ranks(l.root);
-    if (geodem::comm::size() > 1 && !shared)
+    // Under mpirun a study shares its runs across the ranks; a scene spreads its world over them
+    // (with -n 1 too, so that 1, 2 and 4 ranks give the same bits).
+    opt.decompose = geodem::comm::active() && !shared && kind.decomposes;
+    if (geodem::comm::size() > 1 && !shared && !kind.decomposes)
       throw geodem::InputError(scenario, l.kind_line, "kind",
-                               "only studies (series, rate_study, calibrate) and pull-outs over "
-                               "seeds share their runs across MPI ranks; run this scenario "
-                               "without mpirun");
+                               "under mpirun, studies (series, rate_study, calibrate) and "
+                               "pull-outs over seeds share their runs across the ranks and "
+                               "scenes spread their grains over them; run this kind without "
+                               "mpirun");
     // Single runs stop on SIGINT/SIGTERM after the step in progress, with a checkpoint;
     // runs shared as a study's keep the default (their finished runs are reused).
     if (!shared) geodem::install_interrupt_handlers();
@@ -141,16 +145,19 @@ int run_main(int argc, char** argv) {
                    done.done.empty() ? "" : "; ", out_dir.c_str());
     return done.exit_code;
   } catch (const geodem::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    // Input errors, instabilities and signals reach every rank of mpirun alike: rank 0 says so.
+    if (geodem::comm::rank() == 0) std::fprintf(stderr, "error: %s\n", e.what());
     return kBadInput;
   } catch (const geodem::Interrupted& i) {
-    std::fprintf(stderr, "interrupted by signal %d: outputs so far are in %s%s%s\n", i.signal,
-                 out_dir.c_str(), i.checkpoint.empty() ? "" : "; continue with --resume ",
-                 i.checkpoint.empty() ? "" : out_dir.c_str());
+    if (geodem::comm::rank() == 0)
+      std::fprintf(stderr, "interrupted by signal %d: outputs so far are in %s%s%s\n", i.signal,
+                   out_dir.c_str(), i.checkpoint.empty() ? "" : "; continue with --resume ",
+                   i.checkpoint.empty() ? "" : out_dir.c_str());
     return 128 + i.signal;
   } catch (const geodem::InstabilityError& e) {
-    std::fprintf(stderr, "unstable: %s\nthe outputs written so far are in %s\n", e.what(),
-                 out_dir.c_str());
+    if (geodem::comm::rank() == 0)
+      std::fprintf(stderr, "unstable: %s\nthe outputs written so far are in %s\n", e.what(),
+                   out_dir.c_str());
     return kUnstable;
   } catch (const std::bad_alloc&) {
     // The estimate let it start (io/memory_budget.hpp), but the machine ran out: say so,
@@ -169,7 +176,10 @@ int run_main(int argc, char** argv) {
     }
     return kFailure;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    if (geodem::comm::size() > 1)
+      std::fprintf(stderr, "error on rank %d: %s\n", geodem::comm::rank(), e.what());
+    else
+      std::fprintf(stderr, "error: %s\n", e.what());
     return kFailure;
   }
 }

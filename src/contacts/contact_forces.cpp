@@ -141,7 +141,8 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
                                       broken);
           if (broken) {
             extra[k].bonded = 0;
-            ++t.broken_bonds;
+            // A bond across a rank boundary breaks on both ranks: its row's owner counts it.
+            if (!(P.flags[i] & kGhost)) ++t.broken_bonds;
             if (delta <= 0.0) {
               extra[k] = ContactExtra<D>{};
               continue;
@@ -333,13 +334,18 @@ void reduce_over_ranks(World<D>& world, std::vector<SlabTally<D>>& tallies, std:
   const std::size_t nw = world.walls.size();
   const bool measure = world.measure_this_step;
   static thread_local std::vector<ExactSum> sums;  // kept: the step allocates nothing
-  sums.assign(nw * Tally::kPerWall + (measure ? Tally::kStats : 0), ExactSum{});
+  // (last: the ranks that met an overlap beyond the limit, so that every rank stops)
+  const std::size_t flag = nw * Tally::kPerWall + (measure ? Tally::kStats : 0);
+  sums.assign(flag + 1, ExactSum{});
   for (std::size_t s = 0; s < slabs; ++s) {
     const auto& t = tallies[s].exact;
     for (std::size_t k = 0; k < t.wall.size(); ++k) sums[k].add(t.wall[k]);
     for (std::size_t k = 0; k < t.stats.size(); ++k) sums[nw * Tally::kPerWall + k].add(t.stats[k]);
   }
+  for (std::size_t s = 0; s < slabs; ++s)
+    if (tallies[s].overlap_offender >= 0) sums[flag].add(1.0);
   world.domain->sum(sums);
+  world.overlap_elsewhere = sums[flag].value() > 0.0;
   for (std::size_t w = 0; w < nw; ++w) {
     for (int a = 0; a < D; ++a)
       world.walls[w].force[a] = sums[w * Tally::kPerWall + static_cast<std::size_t>(a)].value();

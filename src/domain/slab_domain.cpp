@@ -164,6 +164,26 @@ double SlabDomain<D>::min_over_ranks(double here) {
 }
 
 template <int D>
+std::string SlabDomain<D>::first_text(const std::string& here) {
+  Timed t(comm_seconds_);
+  // Each rank's text with its length in front, in rank order.
+  const std::uint64_t n = here.size();
+  Bytes framed(sizeof n + here.size());
+  std::memcpy(framed.data(), &n, sizeof n);
+  if (n > 0) std::memcpy(framed.data() + sizeof n, here.data(), here.size());
+  const Bytes all = comm_->all_gather(framed);
+  std::size_t at = 0;
+  while (at + sizeof n <= all.size()) {
+    std::uint64_t len = 0;
+    std::memcpy(&len, all.data() + at, sizeof len);
+    at += sizeof len;
+    if (len > 0) return std::string(reinterpret_cast<const char*>(all.data() + at), len);
+    at += len;
+  }
+  return {};
+}
+
+template <int D>
 void SlabDomain<D>::exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower,
                              Bytes& from_upper) {
   Timed t(comm_seconds_);

@@ -40,6 +40,9 @@ class SlabDomain final : public DomainHooks<D> {
   bool any_rank(bool here) override;
   double min_over_ranks(double here) override;
   void sum(std::vector<ExactSum>& sums) override;
+  std::string first_text(const std::string& here) override;
+  int rank() const override { return comm_->rank(); }
+  int ranks() const override { return comm_->size(); }
   double skin() const override { return skin_; }
   void before_build(World<D>& world) override;
   void after_integration(World<D>& world) override;

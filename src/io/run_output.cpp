@@ -1,8 +1,11 @@
 #include "io/run_output.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "io/output_files.hpp"
@@ -83,31 +86,83 @@ nlohmann::json timing_json(const World<D>& world, double wall_s, std::uint64_t s
   return t;
 }
 
+namespace {
+
+// The grains this rank owns, as a world of their own (a frame's piece).
+template <int D>
+World<D> owned_grains(const World<D>& world) {
+  World<D> own;
+  own.time = world.time, own.step = world.step;
+  own.particles = world.particles;
+  std::vector<std::uint32_t> keep;
+  for (std::size_t i = 0; i < world.particles.size(); ++i)
+    if (!(world.particles.flags[i] & kGhost)) keep.push_back(static_cast<std::uint32_t>(i));
+  own.particles.permute(keep);
+  return own;
+}
+
+}  // namespace
+
 template <int D>
 void VtkSeries<D>::write(const World<D>& world) {
+  using Vec = typename Dim<D>::Vec;
   char name[64];
-  std::snprintf(name, sizeof name, "particles_%06d.vtu", count_);
-  write_particles_vtu(dir_ + "/vtk/" + name, world, reference_);
-  pvd_.add(world.time, name, 0);
-  if (!world.walls.empty()) {
-    std::snprintf(name, sizeof name, "walls_%06d.vtp", count_);
-    // Draw planes a little larger than the grains' extent.
-    double half = 0.0;
-    const auto& P = world.particles;
-    if (!P.pos.empty()) {
-      auto lo = P.pos[0], hi = P.pos[0];
-      for (const auto& x : P.pos) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-      half = 0.6 * (hi - lo).maxCoeff() + 2.0 * P.radius[0];
+  const bool root = !world.domain || world.domain->rank() == 0;
+  const World<D>* grains = &world;
+  std::optional<World<D>> own;
+  if (world.domain) {
+    // A decomposed domain: each rank writes its own grains as a piece, rank 0 the index.
+    own.emplace(owned_grains(world));
+    grains = &*own;
+    std::snprintf(name, sizeof name, "particles_%06d_%d.vtu", count_, world.domain->rank());
+    write_particles_vtu(dir_ + "/vtk/" + name, *own, reference_);
+    std::vector<std::string> pieces;
+    for (int r = 0; r < world.domain->ranks(); ++r) {
+      std::snprintf(name, sizeof name, "particles_%06d_%d.vtu", count_, r);
+      pieces.push_back(name);
     }
-    write_walls_vtp(dir_ + "/vtk/" + name, world, half);
-    pvd_.add(world.time, name, 1);
+    std::snprintf(name, sizeof name, "particles_%06d.pvtu", count_);
+    if (root) write_particles_pvtu(dir_ + "/vtk/" + name, pieces, reference_ != nullptr);
+  } else {
+    std::snprintf(name, sizeof name, "particles_%06d.vtu", count_);
+    write_particles_vtu(dir_ + "/vtk/" + name, world, reference_);
+  }
+  if (root) pvd_.add(world.time, name, 0);
+  if (!world.walls.empty()) {
+    // Draw planes a little larger than the grains' extent, centred on their centroid.
+    const auto& P = grains->particles;
+    const double inf = std::numeric_limits<double>::infinity();
+    Vec lo = Vec::Constant(inf), hi = Vec::Constant(-inf), sum = Vec::Zero();
+    double rmax = 0.0;
+    for (std::size_t i = 0; i < P.size(); ++i)
+      lo = lo.cwiseMin(P.pos[i]), hi = hi.cwiseMax(P.pos[i]), sum += P.pos[i],
+      rmax = std::max(rmax, P.radius[i]);
+    double count = static_cast<double>(P.size());
+    if (world.domain) {
+      std::vector<ExactSum> s(D + 1);
+      for (int k = 0; k < D; ++k) s[k].add(sum[k]);
+      s[D].add(count);
+      world.domain->sum(s);
+      for (int k = 0; k < D; ++k)
+        sum[k] = s[k].value(), lo[k] = world.domain->min_over_ranks(lo[k]),
+        hi[k] = -world.domain->min_over_ranks(-hi[k]);
+      count = s[D].value();
+      rmax = -world.domain->min_over_ranks(-rmax);
+    }
+    const double half = count > 0.0 ? 0.6 * (hi - lo).maxCoeff() + 2.0 * rmax : 0.0;
+    const Vec centre = count > 0.0 ? Vec(sum / count) : Vec::Zero();
+    std::snprintf(name, sizeof name, "walls_%06d.vtp", count_);
+    if (root) {
+      write_walls_vtp(dir_ + "/vtk/" + name, world, half, &centre);
+      pvd_.add(world.time, name, 1);
+    }
   }
   if (!world.spars.empty()) {
     std::snprintf(name, sizeof name, "spars_%06d.vtp", count_);
     write_spars_vtp(dir_ + "/vtk/" + name, world);
     pvd_.add(world.time, name, 2);
   }
-  if (contacts_) {
+  if (contacts_) {  // (not in a decomposed domain: refused by the runners)
     std::snprintf(name, sizeof name, "contacts_%06d.vtp", count_);
     write_contacts_vtp(dir_ + "/vtk/" + name, world);
     pvd_.add(world.time, name, 3);
@@ -117,7 +172,7 @@ void VtkSeries<D>::write(const World<D>& world) {
     write_cell_vtp(dir_ + "/vtk/" + name, world);
     pvd_.add(world.time, name, 4);
   }
-  pvd_.write();
+  if (root) pvd_.write();
   ++count_;
 }
 

@@ -16,6 +16,8 @@ struct RunOptions {
   bool quiet = false;
   int threads = 1;
   bool resume = false;  // continue from the newest valid checkpoint in out_dir
+  // One model over the ranks of mpirun (docs/parallel.md): the runner decomposes its world.
+  bool decompose = false;
 };
 
 // Creates DIR and DIR/vtk (exit code 1 on failure).

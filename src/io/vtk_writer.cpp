@@ -129,13 +129,41 @@ void write_particles_vtu(const std::string& path, const World<D>& world,
   write_vtk(path, "UnstructuredGrid", body.str(), data);
 }
 
+void write_particles_pvtu(const std::string& path, const std::vector<std::string>& pieces,
+                          bool displacement) {
+  // The arrays of write_particles_vtu, by name, type and components.
+  std::ostringstream body;
+  auto array = [&](const char* name, const char* type, int components) {
+    body << "<PDataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
+         << components << "\"/>\n";
+  };
+  body << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" "
+          "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+          "<PUnstructuredGrid GhostLevel=\"0\">\n<PPointData Scalars=\"radius\" "
+          "Vectors=\"velocity\">\n";
+  array("radius", "Float64", 1), array("velocity", "Float64", 3);
+  array("angular_velocity", "Float64", 3), array("force", "Float64", 3);
+  array("id", "UInt32", 1), array("material", "UInt8", 1), array("clump", "Int32", 1);
+  if (displacement) array("displacement", "Float64", 3);
+  body << "</PPointData>\n<PPoints>\n";
+  array("Points", "Float64", 3);
+  body << "</PPoints>\n<PCells>\n";
+  array("connectivity", "Int64", 1), array("offsets", "Int64", 1), array("types", "UInt8", 1);
+  body << "</PCells>\n";
+  for (const auto& p : pieces) body << "<Piece Source=\"" << p << "\"/>\n";
+  body << "</PUnstructuredGrid>\n</VTKFile>\n";
+  write_file_atomic(path, [&](std::ostream& out) { out << body.str(); });
+}
+
 template <int D>
-void write_walls_vtp(const std::string& path, const World<D>& world, double half_size) {
+void write_walls_vtp(const std::string& path, const World<D>& world, double half_size,
+                     const typename Dim<D>::Vec* grains_centre) {
   using Vec = typename Dim<D>::Vec;
   const auto& P = world.particles;
   Vec centre = Vec::Zero();
   for (const auto& x : P.pos) centre += x;
   if (!P.pos.empty()) centre /= static_cast<double>(P.pos.size());
+  if (grains_centre) centre = *grains_centre;
   std::vector<double> pts;
   std::vector<std::int64_t> conn, offs;
   std::vector<double> force, stress;
@@ -309,8 +337,8 @@ template void write_particles_vtu<2>(const std::string&, const World<2>&,
                                      const std::vector<Dim<2>::Vec>*);
 template void write_particles_vtu<3>(const std::string&, const World<3>&,
                                      const std::vector<Dim<3>::Vec>*);
-template void write_walls_vtp<2>(const std::string&, const World<2>&, double);
-template void write_walls_vtp<3>(const std::string&, const World<3>&, double);
+template void write_walls_vtp<2>(const std::string&, const World<2>&, double, const Dim<2>::Vec*);
+template void write_walls_vtp<3>(const std::string&, const World<3>&, double, const Dim<3>::Vec*);
 template void write_cell_vtp<2>(const std::string&, const World<2>&);
 template void write_cell_vtp<3>(const std::string&, const World<3>&);
 template void write_spars_vtp<2>(const std::string&, const World<2>&);

@@ -16,10 +16,16 @@ template <int D>
 void write_particles_vtu(const std::string& path, const World<D>& world,
                          const std::vector<typename Dim<D>::Vec>* reference = nullptr);
 
+// The index of a frame written in pieces (one .vtu of write_particles_vtu per rank of a
+// decomposed domain, file names relative to the .pvtu's folder).
+void write_particles_pvtu(const std::string& path, const std::vector<std::string>& pieces,
+                          bool displacement);
+
 // Planes are drawn as squares (3D) or segments (2D) of the given half size, centred
-// on the grains' centroid projected onto the plane.
+// on the grains' centroid projected onto the plane (or on `grains_centre` when given).
 template <int D>
-void write_walls_vtp(const std::string& path, const World<D>& world, double half_size);
+void write_walls_vtp(const std::string& path, const World<D>& world, double half_size,
+                     const typename Dim<D>::Vec* grains_centre = nullptr);
 
 // Spar chains as polylines: node velocity, element tension, stiffness and chain index.
 template <int D>

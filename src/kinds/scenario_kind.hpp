@@ -38,6 +38,8 @@ struct ScenarioKind {
   // plots the scenario asks for.
   KindRun (*run)(const LoadedScenario& scenario, const std::string& file, const RunOptions& options,
                  bool overwrite);
+  // One run of it spreads its world over the ranks of mpirun (docs/parallel.md).
+  bool decomposes = false;
 };
 
 // Every kind, in the order the docs list them.

@@ -7,6 +7,7 @@
 #include "scene/build_scene.hpp"
 #include "scene/run_scene.hpp"
 #include "scene/scene_settings.hpp"
+#include "study/study_comm.hpp"
 
 namespace geodem {
 
@@ -38,7 +39,9 @@ KindRun run(const LoadedScenario& l, const std::string& file, const RunOptions& 
             bool overwrite) {
   const SceneSettings s = read_scene(l.root, file);
   claim_output(opt, overwrite);
-  PlotProcess plots = s.output.plots ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
+  // (the plots of a decomposed run are rank 0's: the others write no history)
+  const bool plot = s.output.plots && (!opt.decompose || comm::rank() == 0);
+  PlotProcess plots = plot ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
   const auto summary = run_scene(s, opt);
   plots.finish();
   char line[256];
@@ -51,7 +54,9 @@ KindRun run(const LoadedScenario& l, const std::string& file, const RunOptions& 
 }  // namespace
 
 ScenarioKind scene_kind() {
-  return {"scene", nullptr, true, [](const toml::table&) { return false; }, check, run};
+  ScenarioKind k{"scene", nullptr, true, [](const toml::table&) { return false; }, check, run};
+  k.decomposes = true;
+  return k;
 }
 
 }  // namespace geodem

@@ -79,11 +79,29 @@ typename Dim<D>::Tensor fabric_tensor(const World<D>& w) {
   using Vec = typename Dim<D>::Vec;
   typename Dim<D>::Tensor f = Dim<D>::Tensor::Zero();
   std::size_t count = 0;
-  each_contact(w, [&](std::size_t, std::uint32_t, std::uint32_t, const Vec& n, double delta, bool) {
-    if (delta <= 0.0) return;  // a bond held open is not a contact of the fabric
-    f += n * n.transpose();
-    ++count;
-  });
+  if (w.domain) {
+    // A decomposed world: each contact counted by the rank that owns its row's grain, in exact
+    // sums added over ranks (the same bits for any number of ranks).
+    std::vector<ExactSum> s(D * D + 1);
+    each_contact(
+        w, [&](std::size_t i, std::uint32_t, std::uint32_t, const Vec& n, double delta, bool) {
+          if (delta <= 0.0 || (w.particles.flags[i] & kGhost)) return;
+          for (int a = 0; a < D; ++a)
+            for (int b = 0; b < D; ++b) s[a * D + b].add(n[a] * n[b]);
+          s[D * D].add(1.0);
+        });
+    w.domain->sum(s);
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) f(a, b) = s[a * D + b].value();
+    count = static_cast<std::size_t>(s[D * D].value());
+  } else {
+    each_contact(w,
+                 [&](std::size_t, std::uint32_t, std::uint32_t, const Vec& n, double delta, bool) {
+                   if (delta <= 0.0) return;  // a bond held open is not a contact of the fabric
+                   f += n * n.transpose();
+                   ++count;
+                 });
+  }
   return count ? typename Dim<D>::Tensor(f / static_cast<double>(count)) : f;
 }
 

@@ -200,61 +200,79 @@ double disc_rectangle_area(double cx, double cy, double r, double x0, double y0,
          quadrant_area(x0, y0, r);
 }
 
+namespace {
+
+// The volume of grain i inside the box.
 template <int D>
-double solid_volume_in_box(const World<D>& world, const Box<D>& box) {
+double grain_volume_in_box(const World<D>& world, const Box<D>& box, std::size_t i) {
   const auto& P = world.particles;
   double v = 0.0;
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    const auto& x = P.pos[i];
-    const double r = P.radius[i];
-    bool inside = true, outside = false;
-    for (int k = 0; k < D; ++k) {
-      if (x[k] - r < box.lo[k] || x[k] + r > box.hi[k]) inside = false;
-      if (x[k] + r <= box.lo[k] || x[k] - r >= box.hi[k]) outside = true;
-    }
-    if (outside) continue;
-    if (inside) {
-      v += Dim<D>::volume(r);
-      continue;
-    }
-    if constexpr (D == 2) {
-      v += disc_rectangle_area(x[0], x[1], r, box.lo[0], box.lo[1], box.hi[0], box.hi[1]);
-    } else {
-      // Slices along z: substitution z = cz + r sin(theta) removes the end singularity;
-      // the slice areas have kinks where a slice starts touching a face, so the range is
-      // split at those heights and each piece integrated with 16 Gauss points.
-      const double za = std::max(box.lo[2], x[2] - r), zb = std::min(box.hi[2], x[2] + r);
-      const double ta = std::asin(std::clamp((za - x[2]) / r, -1.0, 1.0));
-      const double tb = std::asin(std::clamp((zb - x[2]) / r, -1.0, 1.0));
-      std::array<double, 12> cuts{ta, tb};  // ends + at most 8 kinks
-      int nc = 2;
-      for (int k = 0; k < 2; ++k)
-        for (double face : {box.lo[k], box.hi[k]}) {
-          const double dist = std::abs(face - x[k]);
-          if (dist >= r) continue;
-          const double rho_t = std::acos(dist / r);  // |theta| where the slice radius = dist
-          for (double t : {-rho_t, rho_t})
-            if (t > ta && t < tb) cuts[nc++] = t;
-        }
-      for (int a = 1; a < nc; ++a)  // insertion sort of at most 10 values
-        for (int b = a; b > 0 && cuts[b - 1] > cuts[b]; --b) std::swap(cuts[b - 1], cuts[b]);
-      for (int c = 0; c + 1 < nc; ++c) {
-        const double a = cuts[c], b = cuts[c + 1], half = 0.5 * (b - a), mid = 0.5 * (a + b);
-        // At a kink the slice area behaves as |theta - kink|^(3/2); the cubic map
-        // s = u (3 - u^2) / 2 (zero slope at both ends) turns that into a smooth integrand.
-        for (int g = 0; g < 8; ++g)
-          for (double sgn : {-1.0, 1.0}) {
-            const double u = sgn * kGaussX[g];
-            const double t = mid + half * 0.5 * u * (3.0 - u * u);
-            const double jac = half * 1.5 * (1.0 - u * u);
-            const double rho = r * std::cos(t);
-            v += kGaussW[g] * jac * r * std::cos(t) *
-                 disc_rectangle_area(x[0], x[1], rho, box.lo[0], box.lo[1], box.hi[0], box.hi[1]);
-          }
+  const auto& x = P.pos[i];
+  const double r = P.radius[i];
+  bool inside = true, outside = false;
+  for (int k = 0; k < D; ++k) {
+    if (x[k] - r < box.lo[k] || x[k] + r > box.hi[k]) inside = false;
+    if (x[k] + r <= box.lo[k] || x[k] - r >= box.hi[k]) outside = true;
+  }
+  if (outside) return 0.0;
+  if (inside) return Dim<D>::volume(r);
+  if constexpr (D == 2) {
+    v += disc_rectangle_area(x[0], x[1], r, box.lo[0], box.lo[1], box.hi[0], box.hi[1]);
+  } else {
+    // Slices along z: substitution z = cz + r sin(theta) removes the end singularity;
+    // the slice areas have kinks where a slice starts touching a face, so the range is
+    // split at those heights and each piece integrated with 16 Gauss points.
+    const double za = std::max(box.lo[2], x[2] - r), zb = std::min(box.hi[2], x[2] + r);
+    const double ta = std::asin(std::clamp((za - x[2]) / r, -1.0, 1.0));
+    const double tb = std::asin(std::clamp((zb - x[2]) / r, -1.0, 1.0));
+    std::array<double, 12> cuts{ta, tb};  // ends + at most 8 kinks
+    int nc = 2;
+    for (int k = 0; k < 2; ++k)
+      for (double face : {box.lo[k], box.hi[k]}) {
+        const double dist = std::abs(face - x[k]);
+        if (dist >= r) continue;
+        const double rho_t = std::acos(dist / r);  // |theta| where the slice radius = dist
+        for (double t : {-rho_t, rho_t})
+          if (t > ta && t < tb) cuts[nc++] = t;
       }
+    for (int a = 1; a < nc; ++a)  // insertion sort of at most 10 values
+      for (int b = a; b > 0 && cuts[b - 1] > cuts[b]; --b) std::swap(cuts[b - 1], cuts[b]);
+    for (int c = 0; c + 1 < nc; ++c) {
+      const double a = cuts[c], b = cuts[c + 1], half = 0.5 * (b - a), mid = 0.5 * (a + b);
+      // At a kink the slice area behaves as |theta - kink|^(3/2); the cubic map
+      // s = u (3 - u^2) / 2 (zero slope at both ends) turns that into a smooth integrand.
+      for (int g = 0; g < 8; ++g)
+        for (double sgn : {-1.0, 1.0}) {
+          const double u = sgn * kGaussX[g];
+          const double t = mid + half * 0.5 * u * (3.0 - u * u);
+          const double jac = half * 1.5 * (1.0 - u * u);
+          const double rho = r * std::cos(t);
+          v += kGaussW[g] * jac * r * std::cos(t) *
+               disc_rectangle_area(x[0], x[1], rho, box.lo[0], box.lo[1], box.hi[0], box.hi[1]);
+        }
     }
   }
   return v;
+}
+
+}  // namespace
+
+template <int D>
+double solid_volume_in_box(const World<D>& world, const Box<D>& box) {
+  auto term = [&](std::size_t i) { return grain_volume_in_box(world, box, i); };
+  if (world.domain) return grain_sum(world, term);
+  double v = 0.0;  // in grain order
+  for (std::size_t i = 0; i < world.particles.size(); ++i) v += term(i);
+  return v;
+}
+
+template <int D>
+std::uint64_t broken_bond_count(const World<D>& world) {
+  if (!world.domain) return world.broken_bonds;
+  std::vector<ExactSum> n(1);  // each rank counted the bonds of its rows
+  n[0].add(static_cast<double>(world.broken_bonds));
+  world.domain->sum(n);
+  return static_cast<std::uint64_t>(n[0].value());
 }
 
 template double kinetic_energy<2>(const World<2>&);
@@ -268,6 +286,8 @@ template Dim<3>::Tensor cell_stress<3>(const World<3>&);
 template double solid_volume<2>(const World<2>&);
 template double solid_volume<3>(const World<3>&);
 template std::size_t intact_bonds<2>(const World<2>&);
+template std::uint64_t broken_bond_count<2>(const World<2>&);
+template std::uint64_t broken_bond_count<3>(const World<3>&);
 template std::size_t intact_bonds<3>(const World<3>&);
 template double unbalanced_force_ratio<2>(const World<2>&);
 template double unbalanced_force_ratio<3>(const World<3>&);

@@ -34,6 +34,11 @@ double solid_volume(const World<D>& world);
 template <int D>
 std::size_t intact_bonds(const World<D>& world);
 
+// Number of bonds broken since the start (world.broken_bonds; in a decomposed world the sum of
+// the ranks' counts, each bond counted by the rank that owns its row's grain).
+template <int D>
+std::uint64_t broken_bond_count(const World<D>& world);
+
 // Number of bodies (free grains and clumps; fixed grains included); in a decomposed world
 // (docs/parallel.md) the whole domain's, every rank's own grains counted.
 template <int D>

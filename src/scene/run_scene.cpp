@@ -18,6 +18,7 @@
 #include "measure/displacement.hpp"
 #include "measure/measurements.hpp"
 #include "scene/build_scene.hpp"
+#include "scene/scene_domain.hpp"
 #include "scene/scene_stages.hpp"
 #include "scene/scene_start.hpp"
 #include "world/step.hpp"
@@ -31,21 +32,28 @@ const char* axis(int k) {
   return k == 0 ? "x" : (k == 1 ? "y" : "z");
 }
 
+// The box around the grains (with their radii, or their centres); in a decomposed world
+// every rank's.
 template <int D>
-Box<D> grains_box(const World<D>& w) {
+Box<D> grains_box(const World<D>& w, bool radii = true) {
   using Vec = typename Dim<D>::Vec;
-  if (w.particles.size() == 0) return Box<D>{Vec::Zero(), Vec::Ones()};  // a chain alone
-  Box<D> b{w.particles.pos[0], w.particles.pos[0]};
+  const double inf = std::numeric_limits<double>::infinity();
+  Box<D> b{Vec::Constant(inf), Vec::Constant(-inf)};
   for (std::size_t i = 0; i < w.particles.size(); ++i) {
-    const Vec r = Vec::Constant(w.particles.radius[i]);
+    const Vec r = Vec::Constant(radii ? w.particles.radius[i] : 0.0);
     b.lo = b.lo.cwiseMin(w.particles.pos[i] - r);
     b.hi = b.hi.cwiseMax(w.particles.pos[i] + r);
   }
+  if (w.domain)
+    for (int k = 0; k < D; ++k)
+      b.lo[k] = w.domain->min_over_ranks(b.lo[k]), b.hi[k] = -w.domain->min_over_ranks(-b.hi[k]);
+  if (!(b.lo[0] <= b.hi[0])) return Box<D>{Vec::Zero(), Vec::Ones()};  // a chain alone
   return b;
 }
 
 template <int D>
 nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
+  if (opt.decompose) check_decomposable(s, opt);
   World<D> w;
   build_world<D>(s, w);
   // (also on resume: the rebuilt world must have the walls and chains the run had)
@@ -86,6 +94,10 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   } else if (s.bonds_initial) {
     bonds_created = create_bonds(w, s.bond_gap_tolerance);
   }
+  // Over the ranks of mpirun: each keeps its slab of the world it built (bonds included).
+  const auto domain = opt.decompose ? decompose_scene(s, w) : nullptr;
+  const bool root = !domain || domain->rank() == 0;  // writes the history and the summary
+  auto positions = [&] { return domain ? domain_positions_by_id(w, *domain) : positions_by_id(w); };
 
   std::optional<Box<D>> box;
   if (s.output.measure_box) {
@@ -149,7 +161,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     // at rest.
     at_rest = finished && stop_reason != "end of duration";
     history.resume(opt.out_dir + "/history.csv", cols, static_cast<double>(w.step));
-  } else {
+  } else if (root) {
     history.open(opt.out_dir + "/history.csv", cols);
   }
 
@@ -177,7 +189,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     if (staged) row.insert(row.begin() + 2, static_cast<double>(stage + 1));
     if (s.bonds_initial) {
       row.push_back(static_cast<double>(intact_bonds(w)));
-      row.push_back(static_cast<double>(w.broken_bonds));
+      row.push_back(static_cast<double>(broken_bond_count(w)));
     }
     const Box<D> vb = box ? *box : grains_box(w);
     if (box) row.push_back(porosity_in_box(w, *box));
@@ -196,7 +208,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     }
     for (const auto& c : w.spars.chains)
       for (double t : chain_tensions(c)) row.push_back(t);
-    history.row(row);
+    if (root) history.row(row);
   };
 
   // What a finished stage reports: how it ended, the stress on each wall with an area, and
@@ -228,11 +240,11 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     return r;
   };
 
-  Progress progress(opt.quiet);
+  Progress progress(opt.quiet || !root);
   std::string status = "completed";
   std::string message;
   if (!opt.resume) {
-    if (displacements) reference = positions_by_id(w);
+    if (displacements) reference = positions();
     update_timestep(w);
     if (s.output.vtk) vtk.write(w);
   }
@@ -251,7 +263,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     while (!at_rest && stage < stage_count) {
       if (!stage_started) {
         start_stage(s, stage, w, false);
-        if (s.output.displacement_from == "stage") reference = positions_by_id(w);
+        if (s.output.displacement_from == "stage") reference = positions();
         update_timestep(w);
         stage_started = 1, stage_t0 = w.time, stage_s0 = w.step;
       }
@@ -304,7 +316,9 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
             if (s.output.vtk && s.output.vtk_every > 0 && w.step % s.output.vtk_every == 0)
               vtk.write(w);
             // A checkpoint closes a step whose outputs are all written.
-            if (interrupt_signal()) {
+            // (the ranks of a decomposed world stop together, at a step they agree on)
+            if (domain ? w.step % 64 == 0 && domain->any_rank(interrupt_signal() != 0)
+                       : interrupt_signal() != 0) {
               checkpoint();
               status = "interrupted";
               return true;
@@ -333,7 +347,14 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   if (status == "completed" && !(finished && w.step == first_step)) {
     if (s.output.vtk && (s.output.vtk_every == 0 || w.step % s.output.vtk_every != 0)) vtk.write(w);
     // The final packing, readable by [[particle_files]] (or [start] of another scene).
-    write_particle_table(opt.out_dir + "/particles.csv", w, s.materials);
+    if (domain) {  // the grains of every rank, in id order
+      World<D> all;
+      all.time = w.time, all.step = w.step;
+      all.particles = grains_on_rank0(w, *domain);
+      if (root) write_particle_table(opt.out_dir + "/particles.csv", all, s.materials);
+    } else {
+      write_particle_table(opt.out_dir + "/particles.csv", w, s.materials);
+    }
     finished = 1;
     if (s.checkpoint.enabled()) checkpoint();
   }
@@ -348,11 +369,11 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   results["time"] = w.time;
   results["steps"] = w.step;
   results["dt"] = w.dt;
-  results["particles"] = w.particles.size();
+  results["particles"] = domain ? body_count(w) : w.particles.size();
   results["clumps"] = w.clumps.size();
   if (s.bonds_initial) {
     results["bonds_created"] = bonds_created;
-    results["bonds_broken"] = w.broken_bonds;
+    results["bonds_broken"] = broken_bond_count(w);
   }
   if (status == "completed") {
     results["kinetic_energy"] = kinetic_energy(w);
@@ -371,11 +392,10 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   }
   if (staged) results["stages"] = nlohmann::json::parse(stage_log);
   results["total_weight"] = body_weight(w);
-  if (!w.particles.pos.empty()) {  // extent of the grain centres
-    auto lo = w.particles.pos[0], hi = w.particles.pos[0];
-    for (const auto& x : w.particles.pos) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-    results["centres_min"] = std::vector<double>(lo.data(), lo.data() + D);
-    results["centres_max"] = std::vector<double>(hi.data(), hi.data() + D);
+  if (body_count(w) > 0) {  // extent of the grain centres
+    const Box<D> c = grains_box(w, false);
+    results["centres_min"] = std::vector<double>(c.lo.data(), c.lo.data() + D);
+    results["centres_max"] = std::vector<double>(c.hi.data(), c.hi.data() + D);
   }
   nlohmann::json walls = nlohmann::json::object();
   for (const auto& wall : w.walls) {
@@ -401,8 +421,9 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   }
 
   const nlohmann::json summary =
-      write_run_summary(opt.out_dir, "scene", status, s.resolved, results,
-                        timing_json(w, wall_s, w.step, opt.threads));
+      root ? write_run_summary(opt.out_dir, "scene", status, s.resolved, results,
+                               timing_json(w, wall_s, w.step, opt.threads))
+           : nlohmann::json{{"results", results}};
   if (status == "unstable") throw InstabilityError(message);
   if (status == "interrupted") throw Interrupted{interrupt_signal(), checkpoints.last()};
   return summary;

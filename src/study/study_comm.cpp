@@ -13,16 +13,17 @@ namespace {
 bool g_active = false;
 int g_rank = 0, g_size = 1;
 
-// Ranks in the world of an MPI launcher (Open MPI, MPICH/Hydra), or 1.
-int launcher_size() {
+// Whether an MPI launcher (Open MPI, MPICH/Hydra) started the process, with -n 1 too: a scene
+// is then decomposed over the ranks, and one rank must give the bits of several.
+bool launched_by_mpi() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
-    if (const char* s = std::getenv(v)) return std::atoi(s);
-  return 1;
+    if (std::getenv(v)) return true;
+  return false;
 }
 }  // namespace
 
 void init(int* argc, char*** argv) {
-  if (launcher_size() <= 1) return;
+  if (!launched_by_mpi()) return;
 #ifdef GEODEM_HAVE_MPI
   int provided = 0;
   // Only the main thread calls MPI; the run workers are threads of their own.

@@ -4,6 +4,7 @@
 // per grain or contact): the step stays one function for one process and for many.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "base/exact_sum.hpp"
@@ -23,6 +24,11 @@ class DomainHooks {
   virtual double min_over_ranks(double here) = 0;
   // Every rank's sums added, exactly (base/exact_sum.hpp), in place.
   virtual void sum(std::vector<ExactSum>& sums) = 0;
+  // The first non-empty text of the ranks in rank order ("" when all are empty): the
+  // diagnosis that stops every rank when one meets an instability.
+  virtual std::string first_text(const std::string& here) = 0;
+  virtual int rank() const = 0;
+  virtual int ranks() const = 0;
   // The skin of every rank's list (from all grains' radii, not only this rank's).
   virtual double skin() const = 0;
   // Before a build: grains that left the rank's region go to their new owner with their

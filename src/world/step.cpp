@@ -120,8 +120,9 @@ std::string dt_advice(const World<D>& world) {
                        : "use the automatic time step, or a smaller fixed one";
 }
 
+namespace {
 template <int D>
-void check_finite(const World<D>& world) {
+void check_finite_here(const World<D>& world) {
   const auto& P = world.particles;
   for (std::size_t i = 0; i < P.size(); ++i) {
     const bool ok = P.pos[i].allFinite() && P.vel[i].allFinite() &&
@@ -204,8 +205,24 @@ void check_finite(const World<D>& world) {
                              ", or raise the nodes' mass");
 }
 
+}  // namespace
+
 template <int D>
-[[noreturn]] void throw_overlap(const World<D>& world) {
+void check_finite(const World<D>& world) {
+  if (!world.domain) return check_finite_here(world);
+  // A decomposed domain: every rank stops, with the first rank's diagnosis.
+  std::string here;
+  try {
+    check_finite_here(world);
+  } catch (const InstabilityError& e) {
+    here = e.what();
+  }
+  const std::string first = world.domain->first_text(here);
+  if (!first.empty()) throw InstabilityError(first);
+}
+
+template <int D>
+std::string overlap_message(const World<D>& world) {
   const auto& P = world.particles;
   const std::int64_t j = world.overlap_partner;
   // Partners: a grain (j >= 0), a wall (-1 - index), a spar element (-1 - walls - index).
@@ -216,13 +233,13 @@ template <int D>
           ? "wall '" + world.walls[other].name + "'"
           : "spar element " + std::to_string(other - world.walls.size()) + " of chain '" +
                 world.spars.chains[world.spars.chain_of[other - world.walls.size()]].name + "'";
-  throw InstabilityError(
-      "overlap of " + std::to_string(static_cast<int>(100.0 * world.overlap_ratio)) +
-      " % of the radius between grain " +
-      std::to_string(P.id[static_cast<std::size_t>(world.overlap_offender)]) + " and " + partner +
-      " at step " + std::to_string(world.step) + " (t = " + std::to_string(world.time) +
-      " s); likely cause: time step too large (dt = " + std::to_string(world.dt) +
-      " s: " + dt_advice(world) + ") or contact stiffness too low for the load");
+  return "overlap of " + std::to_string(static_cast<int>(100.0 * world.overlap_ratio)) +
+         " % of the radius between grain " +
+         std::to_string(P.id[static_cast<std::size_t>(world.overlap_offender)]) + " and " +
+         partner + " at step " + std::to_string(world.step) +
+         " (t = " + std::to_string(world.time) +
+         " s); likely cause: time step too large (dt = " + std::to_string(world.dt) +
+         " s: " + dt_advice(world) + ") or contact stiffness too low for the load";
 }
 
 template <int D>
@@ -266,7 +283,11 @@ void step(World<D>& world) {
     update_collision_shares(world);
     compute_contact_forces(world);
     compute_spar_contacts(world);
-    if (world.overlap_offender >= 0) throw_overlap(world);
+    if (world.overlap_offender >= 0 || world.overlap_elsewhere) {
+      const std::string here = world.overlap_offender >= 0 ? overlap_message(world) : "";
+      // Every rank of a decomposed domain stops here, with the diagnosis of the first that met it.
+      throw InstabilityError(world.domain ? world.domain->first_text(here) : here);
+    }
   }
   if (!world.spars.empty()) {
     ScopedStage<D> t(world, Stage::kStructures);

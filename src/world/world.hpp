@@ -223,6 +223,8 @@ struct StepReport {
   // The first overlap beyond overlap_limit (grain, partner: a grain, or -1 - wall index).
   std::int64_t overlap_offender = -1, overlap_partner = -1;
   double overlap_ratio = 0.0;
+  // A decomposed domain: some rank met such an overlap this step (all ranks stop together).
+  bool overlap_elsewhere = false;
   // In a periodic cell, every step (the cell servo's feedback): the sum over grain-grain
   // contacts of d (x) f (the fabric stress times the volume, members' centres as the grains'
   // centres), and of kn (d_k n_k)^2, the stiffness of the packing against a homogeneous strain

@@ -1,0 +1,111 @@
+#include "scene/scene_domain.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+#include "base/error.hpp"
+#include "distributed/mpi_domain_comm.hpp"
+
+namespace geodem {
+
+namespace {
+[[noreturn]] void refuse(const SceneSettings& s, const std::string& key, const std::string& what) {
+  throw InputError(s.file, 0, key,
+                   what +
+                       " in a scene spread over MPI ranks yet (docs/parallel.md); run it "
+                       "without mpirun");
+}
+}  // namespace
+
+void check_decomposable(const SceneSettings& s, const RunOptions& opt) {
+  auto refuse = [&](const std::string& key, const std::string& what) {
+    geodem::refuse(s, key, what);
+  };
+  // Checkpoints would have to gather the grains with their contact history and keys, and
+  // a resume redistribute them: not there yet.
+  if (s.checkpoint.enabled()) refuse("checkpoint", "checkpoints are not written");
+  if (opt.resume) refuse("--resume", "a run is not resumed");
+  for (std::size_t k = 0; k < s.stages.size(); ++k) {
+    const std::string key = "stages." + std::to_string(k);
+    if (!s.stages[k].remove_grains.empty())
+      refuse(key + ".remove_grains", "stages do not remove grains");
+    if (!s.stages[k].clouds.empty()) refuse(key + ".clouds", "stages do not add grains");
+  }
+  if (s.output.vtk_contacts) refuse("output.vtk_contacts", "contact frames are not written");
+}
+
+template <int D>
+std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world) {
+  auto refuse = [&](const std::string& key, const std::string& what) {
+    geodem::refuse(s, key, what);
+  };
+  if (world.clumps.size() > 0) refuse("clumps", "clumps are not distributed");
+  if (!world.spars.empty()) refuse("chains", "spar chains are not distributed");
+  if (world.cell.periodic) refuse("cell", "a periodic cell is not distributed");
+  try {
+    return SlabDomain<D>::distribute(world, mpi_domain_comm());
+  } catch (const InputError& e) {  // too many ranks for the grains: name the file
+    throw InputError(s.file, 0, "mpirun -n", e.detail());
+  }
+}
+
+namespace {
+
+// Every rank's own grains in id order, on every rank (rank 0 only with `root_only`).
+template <int D>
+std::vector<GrainRecord<D>> gather_grains(const World<D>& world, SlabDomain<D>& domain,
+                                          bool root_only) {
+  const auto& P = world.particles;
+  std::vector<GrainRecord<D>> mine;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (!(P.flags[i] & kGhost)) mine.push_back(GrainRecord<D>::of(P, i, 0));
+  Bytes out;
+  put_records(out, mine);
+  // (an all-gather: the domain's messages have no gather to one rank; the end of a run only)
+  const Bytes all = domain.comm().all_gather(out);
+  std::vector<GrainRecord<D>> grains;
+  if (root_only && domain.comm().rank() != 0) return grains;
+  std::size_t at = 0;
+  while (at < all.size()) append_records(all, at, grains);
+  std::sort(grains.begin(), grains.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+  return grains;
+}
+
+}  // namespace
+
+template <int D>
+Particles<D> grains_on_rank0(const World<D>& world, SlabDomain<D>& domain) {
+  Particles<D> out;
+  const auto grains = gather_grains(world, domain, true);
+  out.reserve(grains.size());
+  for (const auto& g : grains) {
+    out.pos.push_back(g.pos), out.vel.push_back(g.vel), out.angvel.push_back(g.angvel);
+    out.force.push_back(Dim<D>::Vec::Zero()), out.torque.push_back(Dim<D>::zero_rot());
+    out.radius.push_back(g.radius), out.inv_mass.push_back(g.inv_mass);
+    out.inv_inertia.push_back(g.inv_inertia), out.material.push_back(g.material);
+    out.flags.push_back(g.flags), out.pos_at_build.push_back(g.pos_at_build);
+    out.id.push_back(g.id);
+  }
+  out.next_id = world.particles.next_id;
+  return out;
+}
+
+template <int D>
+std::vector<typename Dim<D>::Vec> domain_positions_by_id(const World<D>& world,
+                                                         SlabDomain<D>& domain) {
+  std::vector<typename Dim<D>::Vec> ref(
+      world.particles.next_id, Dim<D>::Vec::Constant(std::numeric_limits<double>::quiet_NaN()));
+  for (const auto& g : gather_grains(world, domain, false))
+    if (g.id < ref.size()) ref[g.id] = g.pos;
+  return ref;
+}
+
+template std::shared_ptr<SlabDomain<2>> decompose_scene<2>(const SceneSettings&, World<2>&);
+template std::shared_ptr<SlabDomain<3>> decompose_scene<3>(const SceneSettings&, World<3>&);
+template Particles<2> grains_on_rank0<2>(const World<2>&, SlabDomain<2>&);
+template Particles<3> grains_on_rank0<3>(const World<3>&, SlabDomain<3>&);
+template std::vector<Dim<2>::Vec> domain_positions_by_id<2>(const World<2>&, SlabDomain<2>&);
+template std::vector<Dim<3>::Vec> domain_positions_by_id<3>(const World<3>&, SlabDomain<3>&);
+
+}  // namespace geodem

@@ -1,0 +1,34 @@
+// A scene run over the ranks of mpirun as one model (docs/parallel.md): every rank builds the
+// whole world from the scenario (the same seed gives the same grains), then keeps its slab of
+// it (domain/slab_domain.hpp). Rank 0 writes the history and the summary from reductions every
+// rank computes; the final particle table is gathered to it, and each rank writes its own piece
+// of the VTK frames.
+#pragma once
+
+#include <memory>
+
+#include "domain/slab_domain.hpp"
+#include "io/run_output.hpp"
+#include "scene/scene_settings.hpp"
+
+namespace geodem {
+
+// Throws InputError naming the key of what a decomposed scene cannot do yet (checkpoints and
+// resuming, stages that add or remove grains, contact frames).
+void check_decomposable(const SceneSettings& s, const RunOptions& opt);
+
+// Decomposes the world over the ranks of MPI_COMM_WORLD; throws InputError for clumps, chains
+// and a periodic cell (not distributed yet) and for slabs thinner than the ghost width.
+template <int D>
+std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world);
+
+// Every rank's own grains in id order, on rank 0 (the others get none): for the particle table.
+template <int D>
+Particles<D> grains_on_rank0(const World<D>& world, SlabDomain<D>& domain);
+
+// Positions of every grain of the domain by id (measure/displacement.hpp), on every rank.
+template <int D>
+std::vector<typename Dim<D>::Vec> domain_positions_by_id(const World<D>& world,
+                                                         SlabDomain<D>& domain);
+
+}  // namespace geodem

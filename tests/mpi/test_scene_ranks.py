@@ -1,0 +1,129 @@
+#!/usr/bin/env python3
+"""`mpirun -n K geodem run scene.toml` spreads one scene over K ranks with the same bits for any
+K: a 3D settle (Hertz law with rolling resistance, VTK frames in pieces) and a 2D biaxial test of
+bonded discs (servo-controlled walls over two stages, bonds breaking across rank boundaries) on
+1, 2 and 4 ranks (oversubscribed) write the same history.csv (every column but the wall-clock
+time), the same particles.csv and the same results in summary.json. An instability on one rank
+stops every rank with one diagnosis; what a decomposed scene cannot do yet is refused by key.
+
+    test_scene_ranks.py PATH/TO/geodem
+Exit 77 (skipped) without mpirun or without MPI in geodem.
+"""
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import xml.etree.ElementTree as ET
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAILED: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def history(path):
+    """The rows of history.csv without the wall-clock column."""
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    keep = [k for k, name in enumerate(rows[0]) if name != "wall_s"]
+    return [[r[k] for k in keep] for r in rows]
+
+
+def pieces(out):
+    """Grain ids of the last frame, read from the pieces its .pvtu lists."""
+    vtk = os.path.join(out, "vtk")
+    last = sorted(f for f in os.listdir(vtk) if f.endswith(".pvtu"))[-1]
+    ids, count = [], 0
+    for piece in ET.parse(os.path.join(vtk, last)).getroot().iter("Piece"):
+        count += 1
+        data = open(os.path.join(vtk, piece.get("Source")), "rb").read()
+        head, blob = data.split(b"<AppendedData encoding=\"raw\">\n_", 1)
+        root = ET.fromstring(head.decode() + "</VTKFile>")
+        n = int(root.find(".//Piece").get("NumberOfPoints"))
+        for arr in root.iter("DataArray"):
+            if arr.get("Name") == "id":
+                at = int(arr.get("offset"))
+                size = int.from_bytes(blob[at:at + 8], "little")
+                assert size == 4 * n
+                ids += [int.from_bytes(blob[at + 8 + 4 * k:at + 12 + 4 * k], "little")
+                        for k in range(n)]
+    return count, ids
+
+
+def main() -> int:
+    geodem = sys.argv[1]
+    mpirun = shutil.which("mpirun")
+    version = subprocess.run([geodem, "--version"], capture_output=True, text=True).stdout
+    if not mpirun or "MPI" not in version:
+        print("no mpirun or geodem without MPI: skipped")
+        return 77
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1")
+
+    def run(ranks, scenario, out, *sets):
+        args = [mpirun, "-n", str(ranks), geodem, "run", os.path.join(HERE, scenario), "--out",
+                out, "--quiet"]
+        for s in sets:
+            args += ["--set", s]
+        return subprocess.run(args, env=env, text=True, capture_output=True, timeout=600)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        for scenario in ("settle3d.toml", "biaxial2d.toml"):
+            ref = None
+            for ranks in (1, 2, 4):
+                out = os.path.join(tmp, f"{scenario}.{ranks}")
+                r = run(ranks, scenario, out)
+                if r.returncode != 0:
+                    check(False, f"{scenario} on {ranks} ranks ran: {r.stdout}{r.stderr}")
+                    continue
+                got = {
+                    "history": history(os.path.join(out, "history.csv")),
+                    "particles": open(os.path.join(out, "particles.csv")).read(),
+                    "results": json.load(open(os.path.join(out, "summary.json")))["results"],
+                }
+                res = got["results"]
+                check(len(got["history"]) > 10 and res["status"] == "completed",
+                      f"{scenario} on {ranks} ranks: {len(got['history']) - 1} history rows, "
+                      f"{res['steps']} steps")
+                if scenario == "settle3d.toml":
+                    count, ids = pieces(out)
+                    check(count == ranks and sorted(ids) == list(range(1000)),
+                          f"{scenario} on {ranks} ranks: the last frame has {count} pieces "
+                          f"holding grains 0-999 once each")
+                    check(res["stop_reason"].startswith("at rest"),
+                          f"{scenario} on {ranks} ranks stopped: {res['stop_reason']}")
+                else:
+                    check(0 < res["bonds_broken"] < res["bonds_created"],
+                          f"{scenario} on {ranks} ranks: {res['bonds_broken']} of "
+                          f"{res['bonds_created']} bonds broke")
+                if ref is None:
+                    ref = got
+                    continue
+                for part in ("history", "particles", "results"):
+                    check(got[part] == ref[part],
+                          f"{scenario}: {part} on {ranks} ranks the same as on 1 rank")
+
+        # An instability on one rank stops all of them, with one diagnosis from rank 0.
+        out = os.path.join(tmp, "unstable")
+        r = run(2, "settle3d.toml", out, "time.step=0.002")
+        summary = json.load(open(os.path.join(out, "summary.json")))["results"]
+        check(r.returncode == 3 and r.stderr.count("unstable:") == 1 and
+              summary["status"] == "unstable" and "overlap" in summary["stop_reason"],
+              f"an overlap on 2 ranks: exit {r.returncode}, status {summary['status']}")
+        # What a decomposed scene cannot do yet is refused by key, before any step.
+        r = run(2, "settle3d.toml", os.path.join(tmp, "ckpt"), "checkpoint.every_steps=100")
+        check(r.returncode == 2 and r.stderr.count("'checkpoint'") == 1,
+              f"checkpoints refused on 2 ranks: exit {r.returncode}")
+    print(f"{len(failures)} failures" if failures else "all passed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
