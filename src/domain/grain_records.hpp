@@ -4,12 +4,14 @@
 // velocity, angular velocity and, if tracked, orientation: SlabDomain::after_integration.)
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <vector>
 
 #include "base/dim.hpp"
+#include "base/state_archive.hpp"
 #include "contacts/neighbour_list.hpp"
 #include "domain/domain_comm.hpp"
 #include "particles/particles.hpp"
@@ -37,6 +39,15 @@ struct GrainRecord {
     g.id = P.id[i], g.material = P.material[i], g.flags = P.flags[i];
     return g;
   }
+  // Appends the grain to P (no clumps: a decomposed world has none), as an owned grain.
+  void append_to(Particles<D>& P) const {
+    P.pos.push_back(pos), P.vel.push_back(vel), P.angvel.push_back(angvel);
+    P.force.push_back(Dim<D>::Vec::Zero()), P.torque.push_back(Dim<D>::zero_rot());
+    P.radius.push_back(radius), P.inv_mass.push_back(inv_mass),
+        P.inv_inertia.push_back(inv_inertia);
+    P.material.push_back(material), P.flags.push_back(static_cast<std::uint8_t>(flags & ~kGhost));
+    P.pos_at_build.push_back(pos_at_build), P.id.push_back(id);
+  }
 };
 
 // A grain-grain contact's history, keyed by the grains' ids, a < b: the spring and moment
@@ -53,6 +64,29 @@ struct WallRecord {
   std::uint32_t id, wall;
   TangentSpring<D> spring;
   ContactExtra<D> extra;
+};
+
+// Records are stored as their bytes in checkpoints too (base/state_archive.hpp).
+template <int D>
+struct IsPlainData<PairRecord<D>> : std::true_type {};
+template <int D>
+struct IsPlainData<WallRecord<D>> : std::true_type {};
+
+// What a checkpoint of a decomposed run keeps besides the world's state (whose grains are
+// saved in key order, without ghosts, and whose neighbour list is empty): the grid of the
+// keys and how often they are retaken, each grain's key, and the contact history as records.
+template <int D>
+struct DomainCheckpoint {
+  typename Dim<D>::Vec grid_lo = Dim<D>::Vec::Zero();
+  std::array<std::uint64_t, 3> grid_dims{1, 1, 1};
+  std::int64_t sort_every = 0;
+  std::vector<std::uint64_t> keys;
+  std::vector<PairRecord<D>> pairs;
+  std::vector<WallRecord<D>> walls;
+  template <class Archive>
+  void visit(Archive& a) {
+    a(grid_lo), a(grid_dims), a(sort_every), a(keys), a(pairs), a(walls);
+  }
 };
 
 // Arrays of records appended to a buffer as a count and their bytes, read back in order.

@@ -38,7 +38,8 @@ PairRecord<D> pair_record(std::uint32_t id_i, std::uint32_t id_j, const TangentS
 
 template <int D>
 std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
-                                                         std::shared_ptr<DomainComm> comm) {
+                                                         std::shared_ptr<DomainComm> comm,
+                                                         const DomainCheckpoint<D>* resumed) {
   auto refuse = [](const std::string& what) {
     throw InputError("", 0, "", what + " (docs/parallel.md)");
   };
@@ -74,7 +75,13 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   // The keys' grid: the grains' bounding box now, cells a ghost width across (grains that
   // leave the box later take the edge cells).
   d->sort_every_ = world.sort_interval;
-  if (n > 0) {
+  if (resumed) {
+    if (resumed->keys.size() != n)
+      throw std::runtime_error("the checkpoint's keys do not match its grains");
+    d->sort_every_ = static_cast<int>(resumed->sort_every);
+    d->grid_lo_ = resumed->grid_lo;
+    d->grid_dims_ = resumed->grid_dims;
+  } else if (n > 0) {
     typename Dim<D>::Vec lo = P.pos[0], hi = P.pos[0];
     for (std::size_t i = 0; i < n; ++i) lo = lo.cwiseMin(P.pos[i]), hi = hi.cwiseMax(P.pos[i]);
     d->grid_lo_ = lo;
@@ -82,11 +89,15 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
       d->grid_dims_[static_cast<std::size_t>(k)] =
           static_cast<std::uint64_t>(std::floor((hi[k] - lo[k]) / d->ghost_width_)) + 1;
   }
-  d->collect_history(world, nullptr);
+  if (resumed) {
+    d->pairs_ = resumed->pairs, d->walls_ = resumed->walls;
+  } else {
+    d->collect_history(world, nullptr);
+  }
   std::vector<std::uint32_t> mine;
   std::vector<std::uint64_t> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
-    keys[i] = d->cell_key(P.pos[i], P.id[i]);
+    keys[i] = resumed ? resumed->keys[i] : d->cell_key(P.pos[i], P.id[i]);
     if (d->owner(P.pos[i].x()) == me) mine.push_back(static_cast<std::uint32_t>(i));
   }
   std::sort(mine.begin(), mine.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
@@ -100,7 +111,10 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   world.rebuild_needed = true;
   // The rank's work is counted from here (a world from a checkpoint brings its stage times).
   for (double t : world.stage_seconds) d->work_at_rebalance_ += t;
+  // World-wide counts that ranks add up start on rank 0 alone.
+  if (me != 0) world.broken_bonds = 0;
   world.domain = d;
+  if (resumed) d->rebuild_as_saved(world);
   return d;
 }
 

@@ -35,7 +35,17 @@ class SlabDomain final : public DomainHooks<D> {
   // history they had, and the world gets this domain as its hooks. Throws InputError for
   // what is not distributed yet (clumps, spar chains, a periodic cell) and when a slab
   // would be thinner than the ghost width.
-  static std::shared_ptr<SlabDomain> distribute(World<D>& world, std::shared_ptr<DomainComm> comm);
+  //
+  // With `resumed`: the world was loaded from a checkpoint of a decomposed run (checkpoint()
+  // below), on any number of ranks. The grains keep their keys, and the list is rebuilt as the
+  // run's last build made it (from the positions then, the walls where they were, the same
+  // build count): the run goes on with the bits it would have had uninterrupted.
+  static std::shared_ptr<SlabDomain> distribute(World<D>& world, std::shared_ptr<DomainComm> comm,
+                                                const DomainCheckpoint<D>* resumed = nullptr);
+  // A checkpoint (all ranks call it): returns on rank 0 the whole domain's grains in key order,
+  // without ghosts, and fills `saved` with their keys, the grid and every contact's history
+  // (each once); other ranks get nothing.
+  Particles<D> checkpoint(const World<D>& world, DomainCheckpoint<D>& saved);
 
   bool any_rank(bool here) override;
   double min_over_ranks(double here) override;
@@ -76,6 +86,7 @@ class SlabDomain final : public DomainHooks<D> {
   // those of the grains marked in `only`.
   void collect_history(const World<D>& world, const std::vector<std::uint8_t>* only);
   void reorder_grains(Particles<D>& P, std::size_t n_old) const;
+  void rebuild_as_saved(World<D>& world);
   void renumber_rows(World<D>& world, const std::vector<std::int32_t>& old_to_new);
 
   std::shared_ptr<DomainComm> comm_;

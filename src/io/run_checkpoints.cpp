@@ -8,7 +8,7 @@
 namespace geodem {
 
 Checkpoint RunCheckpoints::resume(const std::string& scenario_file,
-                                  const std::vector<std::string>& may_change) {
+                                  const std::vector<std::string>& may_change, bool primary) {
   std::vector<std::string> skipped;
   Checkpoint c;
   try {
@@ -17,7 +17,7 @@ Checkpoint RunCheckpoints::resume(const std::string& scenario_file,
     throw InputError(scenario_file, 0, "", std::string("cannot resume: ") + e.what());
   }
   for (const auto& why : skipped)
-    std::fprintf(stderr, "warning: skipped checkpoint %s\n", why.c_str());
+    if (primary) std::fprintf(stderr, "warning: skipped checkpoint %s\n", why.c_str());
   if (c.kind != kind_ || c.dimension != dimension_)
     throw InputError(scenario_file, 0, "kind",
                      "cannot resume: " + c.path + " is a " + std::to_string(c.dimension) + "D '" +
@@ -41,6 +41,7 @@ Checkpoint RunCheckpoints::resume(const std::string& scenario_file,
                      "differs from the setting of the run being resumed (" + c.path +
                          "); only these may change: " + allowed);
   }
+  if (!primary) return c;
   discard_checkpoints_after(out_dir_, c.step);
   std::fprintf(stderr, "resuming from %s (step %llu, t = %g s)\n", c.path.c_str(),
                static_cast<unsigned long long>(c.step), c.time);

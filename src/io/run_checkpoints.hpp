@@ -31,8 +31,11 @@ class RunCheckpoints {
   // The newest valid checkpoint of the output folder (damaged ones are reported on stderr
   // and skipped), checked against this run: same kind and dimension, and settings that
   // differ only under the keys of `may_change` (besides [checkpoint]). Checkpoint files
-  // after it are deleted. Problems are InputErrors naming `scenario_file`.
-  Checkpoint resume(const std::string& scenario_file, const std::vector<std::string>& may_change);
+  // after it are deleted. Problems are InputErrors naming `scenario_file`. The ranks of a
+  // decomposed run other than rank 0 read it too, as not `primary`: they neither delete nor
+  // report.
+  Checkpoint resume(const std::string& scenario_file, const std::vector<std::string>& may_change,
+                    bool primary = true);
 
   // Wall-clock seconds of the whole run: since this object was made, plus those before the
   // checkpoint resumed from (resume_clock). Runners save it in their state.

@@ -193,7 +193,7 @@ void VtkSeries<D>::save(StateWriter& out) const {
 }
 
 template <int D>
-void VtkSeries<D>::restore(StateReader& in) {
+void VtkSeries<D>::restore(StateReader& in, bool primary) {
   in(count_);
   std::uint64_t n = 0;
   in(n);
@@ -201,13 +201,15 @@ void VtkSeries<D>::restore(StateReader& in) {
   auto& e = pvd_.entries();
   e.assign(n, {});
   for (auto& x : e) in(x.time), in(x.file), in(x.part);
-  // Frames numbered count_ and above were written after the checkpoint.
+  if (!primary) return;
+  // Frames numbered count_ and above were written after the checkpoint (PART_FRAME.ext, or
+  // PART_FRAME_RANK.vtu for a decomposed run's pieces).
   std::error_code ec;
   for (const auto& f : std::filesystem::directory_iterator(dir_ + "/vtk", ec)) {
     const std::string name = f.path().filename().string();
-    const auto us = name.rfind('_'), dot = name.rfind('.');
-    if (us == std::string::npos || dot == std::string::npos || dot < us + 2) continue;
-    const std::string digits = name.substr(us + 1, dot - us - 1);
+    const auto us = name.find('_'), end = name.find_first_of("_.", us + 1);
+    if (us == std::string::npos || end == std::string::npos || end < us + 2) continue;
+    const std::string digits = name.substr(us + 1, end - us - 1);
     if (digits.size() > 12 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
     if (std::stoll(digits) >= count_) std::filesystem::remove(f.path(), ec);
   }

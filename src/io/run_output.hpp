@@ -66,7 +66,8 @@ class VtkSeries {
   // written after the checkpoint and rewrites the index, so that a resumed run's series
   // is the one an uninterrupted run writes.
   void save(StateWriter& out) const;
-  void restore(StateReader& in);
+  // (`primary`: this process deletes and rewrites; the other ranks of a decomposed run only read)
+  void restore(StateReader& in, bool primary = true);
 
  private:
   std::string dir_;

@@ -21,6 +21,7 @@
 #include "scene/scene_domain.hpp"
 #include "scene/scene_stages.hpp"
 #include "scene/scene_start.hpp"
+#include "study/study_comm.hpp"
 #include "world/step.hpp"
 #include "world/world_state.hpp"
 
@@ -53,7 +54,9 @@ Box<D> grains_box(const World<D>& w, bool radii = true) {
 
 template <int D>
 nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
-  if (opt.decompose) check_decomposable(s, opt);
+  if (opt.decompose) check_decomposable(s);
+  // Rank 0 of a decomposed run writes the outputs and checkpoints; the others read.
+  const bool root = !opt.decompose || comm::rank() == 0;
   World<D> w;
   build_world<D>(s, w);
   // (also on resume: the rebuilt world must have the walls and chains the run had)
@@ -77,15 +80,17 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   std::string stage_log = "[]";
   // Positions by grain id at the start of the run or of the stage (the VTK displacements).
   std::vector<typename Dim<D>::Vec> reference;
+  DomainCheckpoint<D> saved_domain;  // a decomposed run's keys and contact history
   RunCheckpoints checkpoints("scene", D, s.resolved, opt.out_dir, s.checkpoint);
   Checkpoint resumed;
   StateReader runner_in(nullptr, 0);
   if (opt.resume) {
     // A finished run may be extended, and may stop on other criteria.
-    resumed = checkpoints.resume(s.file, {"time.duration", "time.steps", "stop"});
+    resumed = checkpoints.resume(s.file, {"time.duration", "time.steps", "stop"}, root);
     runner_in = StateReader(resumed.runner.data(), resumed.runner.size());
     runner_in(stage), runner_in(stage_started), runner_in(stage_t0), runner_in(stage_s0);
     runner_in(stage_log), runner_in(reference);
+    if (opt.decompose) saved_domain.visit(runner_in);
     // The saved world has the walls and servos of the stages begun: redo those first.
     for (std::uint64_t k = 0; staged && k < std::min(stage + stage_started, stage_count); ++k)
       start_stage(s, k, w, true);
@@ -94,9 +99,11 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   } else if (s.bonds_initial) {
     bonds_created = create_bonds(w, s.bond_gap_tolerance);
   }
-  // Over the ranks of mpirun: each keeps its slab of the world it built (bonds included).
-  const auto domain = opt.decompose ? decompose_scene(s, w) : nullptr;
-  const bool root = !domain || domain->rank() == 0;  // writes the history and the summary
+  // Over the ranks of mpirun: each keeps its slab of the world it built (bonds included) or
+  // loaded from a checkpoint (on any number of ranks).
+  const auto domain =
+      opt.decompose ? decompose_scene(s, w, opt.resume ? &saved_domain : nullptr) : nullptr;
+  saved_domain = DomainCheckpoint<D>{};
   auto positions = [&] { return domain ? domain_positions_by_id(w, *domain) : positions_by_id(w); };
 
   std::optional<Box<D>> box;
@@ -156,20 +163,25 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     double wall_before = 0.0;  // wall time of the run before the checkpoint
     in(bonds_created), in(wall_before), in(finished), in(stop_reason);
     checkpoints.resume_clock(wall_before);
-    vtk.restore(in);
+    vtk.restore(in, root);
     // A finished run goes on if its duration or step count was raised, unless it stopped
     // at rest.
     at_rest = finished && stop_reason != "end of duration";
-    history.resume(opt.out_dir + "/history.csv", cols, static_cast<double>(w.step));
+    if (root) history.resume(opt.out_dir + "/history.csv", cols, static_cast<double>(w.step));
   } else if (root) {
     history.open(opt.out_dir + "/history.csv", cols);
   }
 
   auto elapsed = [&checkpoints] { return checkpoints.elapsed(); };
   auto checkpoint = [&] {
+    // A decomposed run: rank 0 saves the whole domain as one world (grains in key order, no
+    // list: the history goes as records with the keys, SlabDomain::checkpoint).
+    DomainWorldOnRank0<D> whole(w, domain.get(), saved_domain);
+    if (!root) return;
     checkpoints.write_with(w.step, w.time, [&](StateWriter& runner, StateWriter& world) {
       runner(stage), runner(stage_started), runner(stage_t0), runner(stage_s0), runner(stage_log);
       runner(reference);
+      if (domain) saved_domain.visit(runner);
       runner(bonds_created), runner(elapsed()), runner(finished), runner(stop_reason);
       vtk.save(runner);
       save_world_state(world, w);
@@ -323,7 +335,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
               status = "interrupted";
               return true;
             }
-            if (checkpoints.due(w.step)) checkpoint();
+            const bool due = checkpoints.due(w.step);  // (wall-clock checkpoints: any rank's)
+            if (domain && s.checkpoint.enabled() ? domain->any_rank(due) : due) checkpoint();
             return false;
           });
       if (status != "completed") break;

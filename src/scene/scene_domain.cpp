@@ -6,6 +6,7 @@
 
 #include "base/error.hpp"
 #include "distributed/mpi_domain_comm.hpp"
+#include "measure/measurements.hpp"
 
 namespace geodem {
 
@@ -18,14 +19,10 @@ namespace {
 }
 }  // namespace
 
-void check_decomposable(const SceneSettings& s, const RunOptions& opt) {
+void check_decomposable(const SceneSettings& s) {
   auto refuse = [&](const std::string& key, const std::string& what) {
     geodem::refuse(s, key, what);
   };
-  // Checkpoints would have to gather the grains with their contact history and keys, and
-  // a resume redistribute them: not there yet.
-  if (s.checkpoint.enabled()) refuse("checkpoint", "checkpoints are not written");
-  if (opt.resume) refuse("--resume", "a run is not resumed");
   for (std::size_t k = 0; k < s.stages.size(); ++k) {
     const std::string key = "stages." + std::to_string(k);
     if (!s.stages[k].remove_grains.empty())
@@ -36,7 +33,8 @@ void check_decomposable(const SceneSettings& s, const RunOptions& opt) {
 }
 
 template <int D>
-std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world) {
+std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
+                                               const DomainCheckpoint<D>* resumed) {
   auto refuse = [&](const std::string& key, const std::string& what) {
     geodem::refuse(s, key, what);
   };
@@ -44,7 +42,7 @@ std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>&
   if (!world.spars.empty()) refuse("chains", "spar chains are not distributed");
   if (world.cell.periodic) refuse("cell", "a periodic cell is not distributed");
   try {
-    return SlabDomain<D>::distribute(world, mpi_domain_comm());
+    return SlabDomain<D>::distribute(world, mpi_domain_comm(), resumed);
   } catch (const InputError& e) {  // too many ranks for the grains: name the file
     throw InputError(s.file, 0, "mpirun -n", e.detail());
   }
@@ -79,16 +77,34 @@ Particles<D> grains_on_rank0(const World<D>& world, SlabDomain<D>& domain) {
   Particles<D> out;
   const auto grains = gather_grains(world, domain, true);
   out.reserve(grains.size());
-  for (const auto& g : grains) {
-    out.pos.push_back(g.pos), out.vel.push_back(g.vel), out.angvel.push_back(g.angvel);
-    out.force.push_back(Dim<D>::Vec::Zero()), out.torque.push_back(Dim<D>::zero_rot());
-    out.radius.push_back(g.radius), out.inv_mass.push_back(g.inv_mass);
-    out.inv_inertia.push_back(g.inv_inertia), out.material.push_back(g.material);
-    out.flags.push_back(g.flags), out.pos_at_build.push_back(g.pos_at_build);
-    out.id.push_back(g.id);
-  }
+  for (const auto& g : grains) g.append_to(out);
   out.next_id = world.particles.next_id;
   return out;
+}
+
+template <int D>
+DomainWorldOnRank0<D>::DomainWorldOnRank0(World<D>& world, SlabDomain<D>* domain,
+                                          DomainCheckpoint<D>& saved)
+    : world_(world), saved_(saved) {
+  if (!domain) return;
+  grains_ = domain->checkpoint(world, saved);
+  broken_bonds_ = broken_bond_count(world);
+  if (domain->rank() != 0) return;
+  swap();
+  swapped_ = true;
+}
+
+template <int D>
+DomainWorldOnRank0<D>::~DomainWorldOnRank0() {
+  if (swapped_) swap();
+  saved_ = DomainCheckpoint<D>{};
+}
+
+template <int D>
+void DomainWorldOnRank0<D>::swap() {
+  std::swap(world_.particles, grains_);
+  world_.nlist.swap_rows(rows_);
+  std::swap(world_.broken_bonds, broken_bonds_);
 }
 
 template <int D>
@@ -101,10 +117,14 @@ std::vector<typename Dim<D>::Vec> domain_positions_by_id(const World<D>& world,
   return ref;
 }
 
-template std::shared_ptr<SlabDomain<2>> decompose_scene<2>(const SceneSettings&, World<2>&);
-template std::shared_ptr<SlabDomain<3>> decompose_scene<3>(const SceneSettings&, World<3>&);
+template std::shared_ptr<SlabDomain<2>> decompose_scene<2>(const SceneSettings&, World<2>&,
+                                                           const DomainCheckpoint<2>*);
+template std::shared_ptr<SlabDomain<3>> decompose_scene<3>(const SceneSettings&, World<3>&,
+                                                           const DomainCheckpoint<3>*);
 template Particles<2> grains_on_rank0<2>(const World<2>&, SlabDomain<2>&);
 template Particles<3> grains_on_rank0<3>(const World<3>&, SlabDomain<3>&);
+template class DomainWorldOnRank0<2>;
+template class DomainWorldOnRank0<3>;
 template std::vector<Dim<2>::Vec> domain_positions_by_id<2>(const World<2>&, SlabDomain<2>&);
 template std::vector<Dim<3>::Vec> domain_positions_by_id<3>(const World<3>&, SlabDomain<3>&);
 

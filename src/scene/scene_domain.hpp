@@ -13,14 +13,38 @@
 
 namespace geodem {
 
-// Throws InputError naming the key of what a decomposed scene cannot do yet (checkpoints and
-// resuming, stages that add or remove grains, contact frames).
-void check_decomposable(const SceneSettings& s, const RunOptions& opt);
+// Throws InputError naming the key of what a decomposed scene cannot do yet (stages that add
+// or remove grains, contact frames).
+void check_decomposable(const SceneSettings& s);
 
-// Decomposes the world over the ranks of MPI_COMM_WORLD; throws InputError for clumps, chains
+// Decomposes the world over the ranks of MPI_COMM_WORLD (`resumed`: a world loaded from a
+// decomposed run's checkpoint, SlabDomain::distribute); throws InputError for clumps, chains
 // and a periodic cell (not distributed yet) and for slabs thinner than the ghost width.
 template <int D>
-std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world);
+std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
+                                               const DomainCheckpoint<D>* resumed = nullptr);
+
+// For a checkpoint of a decomposed run (all ranks make one): while it lives, rank 0's world
+// holds the whole domain's grains in key order, an empty neighbour list and the domain's count
+// of broken bonds, and `saved` the keys and contact history (SlabDomain::checkpoint); then the
+// rank's own state comes back. Without a domain it does nothing.
+template <int D>
+class DomainWorldOnRank0 {
+ public:
+  DomainWorldOnRank0(World<D>& world, SlabDomain<D>* domain, DomainCheckpoint<D>& saved);
+  ~DomainWorldOnRank0();
+  DomainWorldOnRank0(const DomainWorldOnRank0&) = delete;
+  DomainWorldOnRank0& operator=(const DomainWorldOnRank0&) = delete;
+
+ private:
+  void swap();
+  World<D>& world_;
+  DomainCheckpoint<D>& saved_;
+  bool swapped_ = false;
+  Particles<D> grains_;
+  NeighbourList<D> rows_;
+  std::uint64_t broken_bonds_ = 0;
+};
 
 // Every rank's own grains in id order, on rank 0 (the others get none): for the particle table.
 template <int D>

@@ -12,6 +12,7 @@
 #include "domain/slab_domain.hpp"
 #include "measure/measurements.hpp"
 #include "pressed_packing.hpp"
+#include "world/world_state.hpp"
 
 namespace geodem::test {
 namespace {
@@ -86,8 +87,8 @@ World<D> packing(bool extras, int sort_interval) {
 constexpr int kSteps = 300;
 
 template <int D>
-void advance(World<D>& w) {
-  for (int k = 0; k < kSteps; ++k) {
+void advance(World<D>& w, int from = 0, int to = kSteps) {
+  for (int k = from; k < to; ++k) {
     if (k == 100) w.walls[2].velocity = vec<D>(0.05, 0.0, 0.0);  // the floor slides
     w.measure_this_step = k + 1 == kSteps;                       // the statistics of the last step
     step(w);
@@ -212,6 +213,14 @@ std::vector<Grain<D>> by_id(const std::vector<World<D>>& parts, std::size_t n,
 }
 
 template <int D>
+std::size_t ghosts_in(const std::vector<World<D>>& parts) {
+  std::size_t g = 0;
+  for (const auto& w : parts)
+    for (auto f : w.particles.flags) g += (f & kGhost) != 0;
+  return g;
+}
+
+template <int D>
 void expect_same(const std::vector<Grain<D>>& a, const std::vector<Grain<D>>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t k = 0; k < a.size(); ++k) {
@@ -284,6 +293,69 @@ TYPED_TEST(DomainTest, RanksInCellOrderAgree) {
     }
   }
   EXPECT_TRUE(cuts_moved);
+}
+
+// A checkpoint of a decomposed run (the whole domain gathered on rank 0 as one world, the
+// contact history as records with the keys) resumed on another number of ranks goes on with
+// the bits of the uninterrupted run: 3 ranks stopped at step 150, resumed on 2 and on 1.
+TYPED_TEST(DomainTest, ACheckpointResumesOnOtherRankCounts) {
+  constexpr int D = TypeParam::value;
+  constexpr int kCut = 150;
+  bool moved = false;
+  std::size_t ghosts = 0;
+  std::vector<Sums<D>> sums;
+  const auto uninterrupted = on_ranks<D>(true, 3, 3, moved, sums, 0);
+  std::size_t n = 0;
+  for (const auto& w : uninterrupted) n += w.particles.size();
+  n -= ghosts_in(uninterrupted);
+  const auto reference = by_id(uninterrupted, n, ghosts);
+  std::string world_bytes, domain_bytes;
+  {
+    Hub hub(3);
+    std::vector<std::thread> threads;
+    for (int r = 0; r < 3; ++r)
+      threads.emplace_back([&, r] {
+        World<D> w = packing<D>(true, 3);
+        auto d = SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r));
+        advance(w, 0, kCut);
+        DomainCheckpoint<D> saved;
+        Particles<D> all = d->checkpoint(w, saved);
+        const std::uint64_t broken = broken_bond_count(w);
+        if (r != 0) return;
+        EXPECT_EQ(all.size(), n);
+        EXPECT_FALSE(saved.pairs.empty());
+        std::swap(w.particles, all);
+        NeighbourList<D> none;
+        w.nlist.swap_rows(none);
+        w.broken_bonds = broken;
+        StateWriter world_out, domain_out;
+        save_world_state(world_out, w);
+        saved.visit(domain_out);
+        world_bytes = world_out.bytes(), domain_bytes = domain_out.bytes();
+      });
+    for (auto& t : threads) t.join();
+  }
+  for (int ranks : {2, 1}) {
+    SCOPED_TRACE(::testing::Message() << "resumed on " << ranks << " ranks");
+    Hub hub(ranks);
+    std::vector<World<D>> parts(static_cast<std::size_t>(ranks));
+    std::vector<std::thread> threads;
+    for (int r = 0; r < ranks; ++r)
+      threads.emplace_back([&, r] {
+        auto& w = parts[static_cast<std::size_t>(r)];
+        w = packing<D>(true, 3);
+        StateReader world_in(world_bytes.data(), world_bytes.size());
+        load_world_state(world_in, w);
+        DomainCheckpoint<D> saved;
+        StateReader domain_in(domain_bytes.data(), domain_bytes.size());
+        saved.visit(domain_in);
+        SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r), &saved);
+        advance(w, kCut, kSteps);
+      });
+    for (auto& t : threads) t.join();
+    expect_same<D>(by_id(parts, n, ghosts), reference);
+    for (const auto& w : parts) EXPECT_EQ(w.dt, uninterrupted[0].dt);
+  }
 }
 
 }  // namespace
