@@ -73,6 +73,20 @@ class MpiDomainComm final : public DomainComm {
       sums[k].normalise();
     }
   }
+  Bytes gather(const Bytes& here) override {
+    const int n = count_of(here.size());
+    std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(counts.size(), 0);
+    MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    std::size_t total = 0;
+    for (std::size_t r = 0; r < counts.size() && rank_ == 0; ++r) {
+      offsets[r] = count_of(total);
+      total += static_cast<std::size_t>(counts[r]);
+    }
+    Bytes out(total);
+    MPI_Gatherv(here.data(), n, MPI_BYTE, out.data(), counts.data(), offsets.data(), MPI_BYTE, 0,
+                MPI_COMM_WORLD);
+    return out;
+  }
   Bytes all_gather(const Bytes& here) override {
     const int n = count_of(here.size());
     std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(counts.size(), 0);

@@ -29,6 +29,8 @@ class DomainComm {
   virtual void sum(std::vector<ExactSum>& sums) = 0;
   // Every rank's bytes, concatenated in rank order, on every rank.
   virtual Bytes all_gather(const Bytes& here) = 0;
+  // The same on rank 0 only (the others get nothing back): the outputs one rank writes.
+  virtual Bytes gather(const Bytes& here) = 0;
 };
 
 }  // namespace geodem

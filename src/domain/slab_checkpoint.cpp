@@ -34,7 +34,7 @@ Particles<D> SlabDomain<D>::checkpoint(const World<D>& world, DomainCheckpoint<D
   put_records(mine, pairs_);
   put_records(mine, walls_);
   pairs_.swap(carried_pairs), walls_.swap(carried_walls);
-  const Bytes all = comm_->all_gather(mine);
+  const Bytes all = comm_->gather(mine);
   Particles<D> out;
   if (comm_->rank() != 0) return out;
   grains.clear();

@@ -156,7 +156,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   checkpoints.outputs({&history});
   VtkSeries<D> vtk(opt.out_dir);
   vtk.with_contacts(s.output.vtk_contacts);
-  const bool displacements = s.output.displacement_from != "none";
+  // (positions by id for the frames alone: a decomposed run gathers them from every rank)
+  const bool displacements = s.output.vtk && s.output.displacement_from != "none";
   if (displacements) vtk.with_reference(&reference);
   if (opt.resume) {
     auto& in = runner_in;
@@ -433,9 +434,16 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     results["chains"] = chains;
   }
 
+  nlohmann::json timing = timing_json(w, wall_s, w.step, opt.threads);
+  if (domain) {  // the whole domain's grains and rate, rank 0's times
+    const std::size_t all = body_count(w);
+    timing["ranks"] = domain->ranks();
+    timing["particles"] = all;
+    timing["particle_steps_per_s"] =
+        wall_s > 0.0 ? static_cast<double>(w.step) * static_cast<double>(all) / wall_s : 0.0;
+  }
   const nlohmann::json summary =
-      root ? write_run_summary(opt.out_dir, "scene", status, s.resolved, results,
-                               timing_json(w, wall_s, w.step, opt.threads))
+      root ? write_run_summary(opt.out_dir, "scene", status, s.resolved, results, timing)
            : nlohmann::json{{"results", results}};
   if (status == "unstable") throw InstabilityError(message);
   if (status == "interrupted") throw Interrupted{interrupt_signal(), checkpoints.last()};

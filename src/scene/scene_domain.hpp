@@ -46,7 +46,8 @@ class DomainWorldOnRank0 {
   std::uint64_t broken_bonds_ = 0;
 };
 
-// Every rank's own grains in id order, on rank 0 (the others get none): for the particle table.
+// Every rank's own grains in id order, on rank 0 (the others get none): for the particle table,
+// whose arrays alone are filled (id, position, radius, velocity, material).
 template <int D>
 Particles<D> grains_on_rank0(const World<D>& world, SlabDomain<D>& domain);
 
