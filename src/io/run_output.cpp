@@ -162,7 +162,20 @@ void VtkSeries<D>::write(const World<D>& world) {
     write_spars_vtp(dir_ + "/vtk/" + name, world);
     pvd_.add(world.time, name, 2);
   }
-  if (contacts_) {  // (not in a decomposed domain: refused by the runners)
+  if (contacts_ && world.domain) {  // each rank its contacts, rank 0 the index
+    std::snprintf(name, sizeof name, "contacts_%06d_%d.vtp", count_, world.domain->rank());
+    write_contacts_vtp(dir_ + "/vtk/" + name, world);
+    std::vector<std::string> pieces;
+    for (int r = 0; r < world.domain->ranks(); ++r) {
+      std::snprintf(name, sizeof name, "contacts_%06d_%d.vtp", count_, r);
+      pieces.push_back(name);
+    }
+    std::snprintf(name, sizeof name, "contacts_%06d.pvtp", count_);
+    if (root) {
+      write_contacts_pvtp(dir_ + "/vtk/" + name, pieces);
+      pvd_.add(world.time, name, 3);
+    }
+  } else if (contacts_) {
     std::snprintf(name, sizeof name, "contacts_%06d.vtp", count_);
     write_contacts_vtp(dir_ + "/vtk/" + name, world);
     pvd_.add(world.time, name, 3);

@@ -16,6 +16,9 @@ template <int D>
 void write_particles_vtu(const std::string& path, const World<D>& world,
                          const std::vector<typename Dim<D>::Vec>* reference = nullptr);
 
+// The same for the contacts of write_contacts_vtp (a .pvtp).
+void write_contacts_pvtp(const std::string& path, const std::vector<std::string>& pieces);
+
 // The index of a frame written in pieces (one .vtu of write_particles_vtu per rank of a
 // decomposed domain, file names relative to the .pvtu's folder).
 void write_particles_pvtu(const std::string& path, const std::vector<std::string>& pieces,

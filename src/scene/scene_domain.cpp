@@ -29,7 +29,6 @@ void check_decomposable(const SceneSettings& s) {
       refuse(key + ".remove_grains", "stages do not remove grains");
     if (!s.stages[k].clouds.empty()) refuse(key + ".clouds", "stages do not add grains");
   }
-  if (s.output.vtk_contacts) refuse("output.vtk_contacts", "contact frames are not written");
 }
 
 template <int D>
