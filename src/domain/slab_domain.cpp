@@ -293,6 +293,19 @@ void SlabDomain<D>::collect_history(const World<D>& world, const std::vector<std
 }
 
 template <int D>
+void SlabDomain<D>::grains_kept(World<D>& world, const std::vector<std::uint32_t>& keep) {
+  std::vector<std::uint64_t> kept(keep.size());
+  for (std::size_t k = 0; k < keep.size(); ++k) kept[k] = key_[keep[k]];
+  key_.swap(kept);
+  std::fill(index_of_id_.begin(), index_of_id_.end(), -1);
+  const auto& P = world.particles;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (P.id[i] < index_of_id_.size()) index_of_id_[P.id[i]] = static_cast<std::int32_t>(i);
+  // (the ghost update's lists are made anew by the build before the next step's motion)
+  send_lower_.clear(), send_upper_.clear(), recv_lower_.clear(), recv_upper_.clear();
+}
+
+template <int D>
 void SlabDomain<D>::after_integration(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   using Rot = typename Dim<D>::Rot;

@@ -55,6 +55,7 @@ class SlabDomain final : public DomainHooks<D> {
   int ranks() const override { return comm_->size(); }
   double skin() const override { return skin_; }
   void before_build(World<D>& world) override;
+  void grains_kept(World<D>& world, const std::vector<std::uint32_t>& keep) override;
   void after_integration(World<D>& world) override;
 
   DomainComm& comm() { return *comm_; }

@@ -25,8 +25,6 @@ void check_decomposable(const SceneSettings& s) {
   };
   for (std::size_t k = 0; k < s.stages.size(); ++k) {
     const std::string key = "stages." + std::to_string(k);
-    if (!s.stages[k].remove_grains.empty())
-      refuse(key + ".remove_grains", "stages do not remove grains");
     if (!s.stages[k].clouds.empty()) refuse(key + ".clouds", "stages do not add grains");
   }
 }

@@ -14,7 +14,7 @@
 namespace geodem {
 
 // Throws InputError naming the key of what a decomposed scene cannot do yet (stages that add
-// or remove grains).
+// grains).
 void check_decomposable(const SceneSettings& s);
 
 // Decomposes the world over the ranks of MPI_COMM_WORLD (`resumed`: a world loaded from a

@@ -35,6 +35,10 @@ class DomainHooks {
   // contact history, ghosts are renewed, and the list's old rows are rewritten for the new
   // numbering, so that the build merges the history as usual.
   virtual void before_build(World<D>& world) = 0;
+  // Grains were removed (world/world_editing.hpp) by a rule on their state, which every rank
+  // applies alike to its grains and ghosts: the grains left are the old indices `keep`, in
+  // order. The next step builds the list (rebuild_needed).
+  virtual void grains_kept(World<D>& world, const std::vector<std::uint32_t>& keep) = 0;
   // After integration: the ghosts take their owners' new positions and velocities.
   virtual void after_integration(World<D>& world) = 0;
 };

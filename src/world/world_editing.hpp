@@ -95,6 +95,7 @@ std::size_t remove_grains(World<D>& w, const std::vector<char>& remove,
     w.nlist.swap_rows(fresh);
   }
   P.permute(keep);
+  if (w.domain) w.domain->grains_kept(w, keep);
   C.permute(keep_clumps);
   for (std::size_t i = 0; clumps && i < P.size(); ++i)
     if (P.clump[i] != kNoClump) P.clump[i] = clump_map[P.clump[i]];

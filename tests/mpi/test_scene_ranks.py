@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """`mpirun -n K geodem run scene.toml` spreads one scene over K ranks with the same bits for any
-K: a 3D settle (Hertz law with rolling resistance, VTK frames in pieces) and a 2D biaxial test of
-bonded discs (servo-controlled walls over two stages, bonds breaking across rank boundaries) on
-1, 2 and 4 ranks (oversubscribed) write the same history.csv (every column but the wall-clock
-time), the same particles.csv and the same results in summary.json. Killed (SIGTERM, or SIGKILL
+K: a 3D settle (Hertz law with rolling resistance, VTK frames in pieces), a 2D biaxial test of
+bonded discs (servo-controlled walls over two stages, bonds breaking across rank boundaries)
+and the staged example (a wall removed, grains excavated, a servo-loaded plate) on 1, 2 and 4
+ranks (oversubscribed) write the same history.csv (every column but the wall-clock time), the
+same particles.csv and the same results in summary.json. Killed (SIGTERM, or SIGKILL
 after periodic checkpoints) and resumed on another number of ranks, they write the history and
 grains of the uninterrupted run. An instability on one rank stops every rank with one diagnosis.
 
@@ -22,6 +23,8 @@ import time
 import xml.etree.ElementTree as ET
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+# Deposit on a gate, gate removed, excavation (grains removed), servo-loaded plate.
+STAGED = os.path.join(HERE, "..", "..", "examples", "staged2d", "scenario.toml")
 failures = []
 
 
@@ -82,11 +85,11 @@ def main() -> int:
         return subprocess.run(args, env=env, text=True, capture_output=True, timeout=600)
 
     with tempfile.TemporaryDirectory() as tmp:
-        for scenario in ("settle3d.toml", "biaxial2d.toml"):
+        for scenario in ("settle3d.toml", "biaxial2d.toml", STAGED):
             ref = None
             for ranks in (1, 2, 4):
-                out = os.path.join(tmp, f"{scenario}.{ranks}")
-                r = run(ranks, scenario, out)
+                out = os.path.join(tmp, f"{os.path.basename(scenario)}.{ranks}")
+                r = run(ranks, scenario, out, "output.plots=false")
                 if r.returncode != 0:
                     check(False, f"{scenario} on {ranks} ranks ran: {r.stdout}{r.stderr}")
                     continue
@@ -114,6 +117,11 @@ def main() -> int:
                           f"draw {sum(lines)} contacts, the history's last row counts {contacts}")
                     check(res["stop_reason"].startswith("at rest"),
                           f"{scenario} on {ranks} ranks stopped: {res['stop_reason']}")
+                elif scenario == STAGED:
+                    check([st["stop_reason"][:7] for st in res["stages"]] == ["at rest"] * 4 and
+                          res["particles"] < 1500,
+                          f"{scenario} on {ranks} ranks: 4 stages at rest, {res['particles']} "
+                          f"grains left after the excavation")
                 else:
                     check(0 < res["bonds_broken"] < res["bonds_created"],
                           f"{scenario} on {ranks} ranks: {res['bonds_broken']} of "
