@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <barrier>
 #include <cmath>
+#include <map>
 #include <thread>
 
 #include "domain/slab_domain.hpp"
 #include "measure/measurements.hpp"
 #include "pressed_packing.hpp"
+#include "world/world_editing.hpp"
 #include "world/world_state.hpp"
 
 namespace geodem::test {
@@ -297,6 +299,51 @@ TYPED_TEST(DomainTest, RanksInCellOrderAgree) {
     }
   }
   EXPECT_TRUE(cuts_moved);
+}
+
+// Grains removed in a band halfway (a stage's excavation): every rank removes its grains and
+// ghosts there, and 1 and 3 ranks still end in the same bits, with the same grains left.
+TYPED_TEST(DomainTest, RemovingGrainsKeepsTheBitsOfOneRank) {
+  constexpr int D = TypeParam::value;
+  // A band across the middle of the column: the grains above it fall into the gap.
+  const double lo = (D == 2 ? 30 : 6) * 1.96 * kPackedRadius, hi = lo + 6 * 1.96 * kPackedRadius;
+  auto run = [&](int ranks) {
+    Hub hub(ranks);
+    std::vector<World<D>> parts(static_cast<std::size_t>(ranks));
+    std::vector<std::size_t> removed(parts.size(), 0);
+    std::vector<std::thread> threads;
+    for (int r = 0; r < ranks; ++r)
+      threads.emplace_back([&, r] {
+        auto& w = parts[static_cast<std::size_t>(r)];
+        w = packing<D>(true, 3);
+        SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r));
+        advance(w, 0, 150);
+        const auto& P = w.particles;
+        removed[static_cast<std::size_t>(r)] = remove_grains(
+            w,
+            grains_where(w, [&](std::size_t i) { return P.pos[i].y() > lo && P.pos[i].y() < hi; }),
+            ContactHistory::kKeep);
+        advance(w, 150, kSteps);
+      });
+    for (auto& t : threads) t.join();
+    EXPECT_GT(removed[0], 0u);
+    std::map<std::uint32_t, Grain<D>> left;
+    for (const auto& w : parts)
+      for (std::size_t i = 0; i < w.particles.size(); ++i)
+        if (!(w.particles.flags[i] & kGhost))
+          left[w.particles.id[i]] = {w.particles.pos[i], w.particles.vel[i], w.particles.angvel[i],
+                                     true};
+    return left;
+  };
+  const auto one = run(1), three = run(3);
+  ASSERT_EQ(one.size(), three.size());
+  EXPECT_LT(one.size(), static_cast<std::size_t>(D == 2 ? 6000 : 4000));
+  for (const auto& [id, g] : one) {
+    const auto it = three.find(id);
+    ASSERT_TRUE(it != three.end()) << "grain " << id;
+    ASSERT_TRUE(g.pos == it->second.pos && g.vel == it->second.vel && g.angvel == it->second.angvel)
+        << "grain " << id;
+  }
 }
 
 // A checkpoint of a decomposed run (the whole domain gathered on rank 0 as one world, the
