@@ -75,7 +75,9 @@ def main() -> int:
         print("no mpirun or geodem without MPI: skipped")
         return 77
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1")
+               OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1",
+               # (more ranks than cores: a waiting rank gives its core to the others)
+               OMPI_MCA_mpi_yield_when_idle="1")
 
     def run(ranks, scenario, out, *sets):
         args = [mpirun, "-n", str(ranks), geodem, "run", os.path.join(HERE, scenario), "--out",
