@@ -162,8 +162,14 @@ def main() -> int:
             if p.poll() is not None:
                 check(False, f"{scenario} on {first} ranks ended before it was killed")
                 continue
-            # The ranks themselves (and mpirun): the pattern is this run's output folder.
-            subprocess.run(["pkill", f"-{sig.name[3:]}", "-f", out])
+            # The ranks themselves (and mpirun): the processes whose command line names this
+            # run's output folder.
+            for pid in os.listdir("/proc"):
+                try:
+                    if pid.isdigit() and out.encode() in open(f"/proc/{pid}/cmdline", "rb").read():
+                        os.kill(int(pid), sig)
+                except OSError:
+                    pass
             p.wait()
             ck = sorted(os.listdir(os.path.join(out, "checkpoint")))
             r = subprocess.run([mpirun, "-n", str(then), geodem, "run",
