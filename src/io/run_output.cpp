@@ -108,21 +108,27 @@ void VtkSeries<D>::write(const World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   char name[64];
   const bool root = !world.domain || world.domain->rank() == 0;
+  // A decomposed domain's frame part: this rank's piece, and the names of every rank's.
+  auto pieces = [&](const char* part, const char* ext, std::string& mine) {
+    std::vector<std::string> all;
+    for (int r = 0; r < world.domain->ranks(); ++r) {
+      std::snprintf(name, sizeof name, "%s_%06d_%d.%s", part, count_, r, ext);
+      all.push_back(name);
+    }
+    mine = all[static_cast<std::size_t>(world.domain->rank())];
+    return all;
+  };
+  std::string piece;
   const World<D>* grains = &world;
   std::optional<World<D>> own;
   if (world.domain) {
     // A decomposed domain: each rank writes its own grains as a piece, rank 0 the index.
     own.emplace(owned_grains(world));
     grains = &*own;
-    std::snprintf(name, sizeof name, "particles_%06d_%d.vtu", count_, world.domain->rank());
-    write_particles_vtu(dir_ + "/vtk/" + name, *own, reference_);
-    std::vector<std::string> pieces;
-    for (int r = 0; r < world.domain->ranks(); ++r) {
-      std::snprintf(name, sizeof name, "particles_%06d_%d.vtu", count_, r);
-      pieces.push_back(name);
-    }
+    const auto all = pieces("particles", "vtu", piece);
+    write_particles_vtu(dir_ + "/vtk/" + piece, *own, reference_);
     std::snprintf(name, sizeof name, "particles_%06d.pvtu", count_);
-    if (root) write_particles_pvtu(dir_ + "/vtk/" + name, pieces, reference_ != nullptr);
+    if (root) write_particles_pvtu(dir_ + "/vtk/" + name, all, reference_ != nullptr);
   } else {
     std::snprintf(name, sizeof name, "particles_%06d.vtu", count_);
     write_particles_vtu(dir_ + "/vtk/" + name, world, reference_);
@@ -163,16 +169,11 @@ void VtkSeries<D>::write(const World<D>& world) {
     pvd_.add(world.time, name, 2);
   }
   if (contacts_ && world.domain) {  // each rank its contacts, rank 0 the index
-    std::snprintf(name, sizeof name, "contacts_%06d_%d.vtp", count_, world.domain->rank());
-    write_contacts_vtp(dir_ + "/vtk/" + name, world);
-    std::vector<std::string> pieces;
-    for (int r = 0; r < world.domain->ranks(); ++r) {
-      std::snprintf(name, sizeof name, "contacts_%06d_%d.vtp", count_, r);
-      pieces.push_back(name);
-    }
+    const auto all = pieces("contacts", "vtp", piece);
+    write_contacts_vtp(dir_ + "/vtk/" + piece, world);
     std::snprintf(name, sizeof name, "contacts_%06d.pvtp", count_);
     if (root) {
-      write_contacts_pvtp(dir_ + "/vtk/" + name, pieces);
+      write_contacts_pvtp(dir_ + "/vtk/" + name, all);
       pvd_.add(world.time, name, 3);
     }
   } else if (contacts_) {

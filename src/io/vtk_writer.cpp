@@ -129,53 +129,70 @@ void write_particles_vtu(const std::string& path, const World<D>& world,
   write_vtk(path, "UnstructuredGrid", body.str(), data);
 }
 
+namespace {
+
+// The index of a frame written in pieces (.pvtu, .pvtp): `sections` declares the pieces'
+// arrays (PPointData, PCellData, PPoints, PCells), then the pieces' files are listed.
+void write_piece_index(const std::string& path, const std::string& type,
+                       const std::string& sections, const std::vector<std::string>& pieces) {
+  std::ostringstream body;
+  body << "<?xml version=\"1.0\"?>\n<VTKFile type=\"" << type
+       << "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<" << type
+       << " GhostLevel=\"0\">\n"
+       << sections;
+  for (const auto& p : pieces) body << "<Piece Source=\"" << p << "\"/>\n";
+  body << "</" << type << ">\n</VTKFile>\n";
+  write_file_atomic(path, [&](std::ostream& out) { out << body.str(); });
+}
+
+// An array's declaration in an index: name, type, components.
+struct PArray {
+  const char* name;
+  const char* type;
+  int components;
+};
+std::string section(const std::string& tag, const std::string& attributes,
+                    const std::vector<PArray>& arrays) {
+  std::string s = "<" + tag + attributes + ">\n";
+  for (const auto& a : arrays)
+    s += std::string("<PDataArray type=\"") + a.type + "\" Name=\"" + a.name +
+         "\" NumberOfComponents=\"" + std::to_string(a.components) + "\"/>\n";
+  return s + "</" + tag + ">\n";
+}
+
+}  // namespace
+
 void write_contacts_pvtp(const std::string& path, const std::vector<std::string>& pieces) {
   // The arrays of write_contacts_vtp.
-  std::ostringstream body;
-  auto array = [&](const char* name, const char* type, int components) {
-    body << "<PDataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
-         << components << "\"/>\n";
-  };
-  body << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PPolyData\" version=\"1.0\" "
-          "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<PPolyData GhostLevel=\"0\">\n"
-          "<PPointData Scalars=\"radius\">\n";
-  array("radius", "Float64", 1);
-  body << "</PPointData>\n<PCellData Scalars=\"force\" Vectors=\"normal\">\n";
-  array("force", "Float64", 1), array("normal_force", "Float64", 1);
-  array("tangential_force", "Float64", 3), array("tangential_force_magnitude", "Float64", 1);
-  array("normal", "Float64", 3), array("overlap", "Float64", 1), array("bonded", "Int64", 1);
-  body << "</PCellData>\n<PPoints>\n";
-  array("Points", "Float64", 3);
-  body << "</PPoints>\n";
-  for (const auto& p : pieces) body << "<Piece Source=\"" << p << "\"/>\n";
-  body << "</PPolyData>\n</VTKFile>\n";
-  write_file_atomic(path, [&](std::ostream& out) { out << body.str(); });
+  write_piece_index(path, "PPolyData",
+                    section("PPointData", " Scalars=\"radius\"", {{"radius", "Float64", 1}}) +
+                        section("PCellData", " Scalars=\"force\" Vectors=\"normal\"",
+                                {{"force", "Float64", 1},
+                                 {"normal_force", "Float64", 1},
+                                 {"tangential_force", "Float64", 3},
+                                 {"tangential_force_magnitude", "Float64", 1},
+                                 {"normal", "Float64", 3},
+                                 {"overlap", "Float64", 1},
+                                 {"bonded", "Int64", 1}}) +
+                        section("PPoints", "", {{"Points", "Float64", 3}}),
+                    pieces);
 }
 
 void write_particles_pvtu(const std::string& path, const std::vector<std::string>& pieces,
                           bool displacement) {
-  // The arrays of write_particles_vtu, by name, type and components.
-  std::ostringstream body;
-  auto array = [&](const char* name, const char* type, int components) {
-    body << "<PDataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
-         << components << "\"/>\n";
-  };
-  body << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" "
-          "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-          "<PUnstructuredGrid GhostLevel=\"0\">\n<PPointData Scalars=\"radius\" "
-          "Vectors=\"velocity\">\n";
-  array("radius", "Float64", 1), array("velocity", "Float64", 3);
-  array("angular_velocity", "Float64", 3), array("force", "Float64", 3);
-  array("id", "UInt32", 1), array("material", "UInt8", 1), array("clump", "Int32", 1);
-  if (displacement) array("displacement", "Float64", 3);
-  body << "</PPointData>\n<PPoints>\n";
-  array("Points", "Float64", 3);
-  body << "</PPoints>\n<PCells>\n";
-  array("connectivity", "Int64", 1), array("offsets", "Int64", 1), array("types", "UInt8", 1);
-  body << "</PCells>\n";
-  for (const auto& p : pieces) body << "<Piece Source=\"" << p << "\"/>\n";
-  body << "</PUnstructuredGrid>\n</VTKFile>\n";
-  write_file_atomic(path, [&](std::ostream& out) { out << body.str(); });
+  // The arrays of write_particles_vtu.
+  std::vector<PArray> point = {
+      {"radius", "Float64", 1}, {"velocity", "Float64", 3}, {"angular_velocity", "Float64", 3},
+      {"force", "Float64", 3},  {"id", "UInt32", 1},        {"material", "UInt8", 1},
+      {"clump", "Int32", 1}};
+  if (displacement) point.push_back({"displacement", "Float64", 3});
+  write_piece_index(
+      path, "PUnstructuredGrid",
+      section("PPointData", " Scalars=\"radius\" Vectors=\"velocity\"", point) +
+          section("PPoints", "", {{"Points", "Float64", 3}}) +
+          section("PCells", "",
+                  {{"connectivity", "Int64", 1}, {"offsets", "Int64", 1}, {"types", "UInt8", 1}}),
+      pieces);
 }
 
 template <int D>
@@ -315,14 +332,7 @@ void write_contacts_vtp(const std::string& path, const World<D>& world) {
   std::vector<double> pts = as3<D>(P.pos), normal = as3<D>(c.normal),
                       ft = as3<D>(c.tangential_force), ft_norm, force;
   std::vector<std::int64_t> conn, offs, bonded;
-  std::size_t lines = 0;
   for (std::size_t k = 0; k < c.size(); ++k) {
-    // A decomposed domain: a contact across a boundary is listed on both ranks, and drawn by
-    // the rank that owns its row's grain (ghost points stay as the far ends of lines).
-    if (P.flags[c.i[k]] & kGhost) continue;
-    const std::size_t at = lines++;
-    for (int a = 0; a < 3; ++a)
-      normal[3 * at + a] = normal[3 * k + a], ft[3 * at + a] = ft[3 * k + a];
     conn.push_back(c.i[k]), conn.push_back(c.j[k]);
     offs.push_back(static_cast<std::int64_t>(conn.size()));
     const double t = c.tangential_force[k].norm();
@@ -330,24 +340,20 @@ void write_contacts_vtp(const std::string& path, const World<D>& world) {
     force.push_back(std::sqrt(c.normal_force[k] * c.normal_force[k] + t * t));
     bonded.push_back(c.bonded[k]);
   }
-  normal.resize(3 * lines), ft.resize(3 * lines);
-  std::vector<double> normal_force, overlap;
-  for (std::size_t k = 0; k < c.size(); ++k)
-    if (!(P.flags[c.i[k]] & kGhost))
-      normal_force.push_back(c.normal_force[k]), overlap.push_back(c.overlap[k]);
   AppendedData data;
   std::ostringstream body;
   body << "<PolyData>\n<Piece NumberOfPoints=\"" << P.size() << "\" NumberOfVerts=\"0\" "
-       << "NumberOfLines=\"" << lines << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
+       << "NumberOfLines=\"" << c.size() << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
   data.add("radius", "Float64", 1, P.radius.data(), P.radius.size() * sizeof(double));
   body << "<PointData Scalars=\"radius\">\n" << data.take_xml() << "</PointData>\n";
   data.add("force", "Float64", 1, force.data(), force.size() * sizeof(double));
-  data.add("normal_force", "Float64", 1, normal_force.data(), normal_force.size() * sizeof(double));
+  data.add("normal_force", "Float64", 1, c.normal_force.data(),
+           c.normal_force.size() * sizeof(double));
   data.add("tangential_force", "Float64", 3, ft.data(), ft.size() * sizeof(double));
   data.add("tangential_force_magnitude", "Float64", 1, ft_norm.data(),
            ft_norm.size() * sizeof(double));
   data.add("normal", "Float64", 3, normal.data(), normal.size() * sizeof(double));
-  data.add("overlap", "Float64", 1, overlap.data(), overlap.size() * sizeof(double));
+  data.add("overlap", "Float64", 1, c.overlap.data(), c.overlap.size() * sizeof(double));
   data.add("bonded", "Int64", 1, bonded.data(), bonded.size() * 8);
   body << "<CellData Scalars=\"force\" Vectors=\"normal\">\n" << data.take_xml() << "</CellData>\n";
   finish_lines(path, body, data, pts, conn, offs);

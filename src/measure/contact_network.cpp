@@ -9,14 +9,16 @@ namespace geodem {
 namespace {
 
 // Calls f(i, j, list entry, normal, overlap, bonded) for each grain-grain contact touching or
-// bonded.
+// bonded. In a decomposed world a contact across a rank boundary is listed on both ranks: the
+// rank that owns its row's grain has it (rows of ghosts are skipped).
 template <int D, class F>
 void each_contact(const World<D>& w, F&& f) {
   using Vec = typename Dim<D>::Vec;
   const auto& P = w.particles;
   const auto& L = w.nlist;
   const bool extras = !L.extra.empty();
-  for (std::size_t i = 0; i + 1 < L.start.size(); ++i)
+  for (std::size_t i = 0; i + 1 < L.start.size(); ++i) {
+    if (P.flags[i] & kGhost) continue;
     for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
       const std::uint32_t j = L.other[k];
       const Vec d = w.branch(i, j, k);
@@ -25,6 +27,7 @@ void each_contact(const World<D>& w, F&& f) {
       if ((dist >= rs && !bond) || dist <= 0.0) continue;
       f(i, j, k, Vec(d / dist), rs - dist, bond);
     }
+  }
 }
 
 }  // namespace
@@ -80,16 +83,16 @@ typename Dim<D>::Tensor fabric_tensor(const World<D>& w) {
   typename Dim<D>::Tensor f = Dim<D>::Tensor::Zero();
   std::size_t count = 0;
   if (w.domain) {
-    // A decomposed world: each contact counted by the rank that owns its row's grain, in exact
-    // sums added over ranks (the same bits for any number of ranks).
+    // A decomposed world: each rank's contacts in exact sums added over ranks (the same bits
+    // for any number of ranks).
     std::vector<ExactSum> s(D * D + 1);
-    each_contact(
-        w, [&](std::size_t i, std::uint32_t, std::uint32_t, const Vec& n, double delta, bool) {
-          if (delta <= 0.0 || (w.particles.flags[i] & kGhost)) return;
-          for (int a = 0; a < D; ++a)
-            for (int b = 0; b < D; ++b) s[a * D + b].add(n[a] * n[b]);
-          s[D * D].add(1.0);
-        });
+    each_contact(w,
+                 [&](std::size_t, std::uint32_t, std::uint32_t, const Vec& n, double delta, bool) {
+                   if (delta <= 0.0) return;
+                   for (int a = 0; a < D; ++a)
+                     for (int b = 0; b < D; ++b) s[a * D + b].add(n[a] * n[b]);
+                   s[D * D].add(1.0);
+                 });
     w.domain->sum(s);
     for (int a = 0; a < D; ++a)
       for (int b = 0; b < D; ++b) f(a, b) = s[a * D + b].value();
