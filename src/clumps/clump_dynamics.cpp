@@ -120,13 +120,14 @@ double place_members(World<D>& world) {
   if (C.size() == 0) return vmax2;
   const Mat* __restrict R = C.rotation.data();
   const auto n = static_cast<std::ptrdiff_t>(P.size());
+  const std::size_t owned = C.owned();
 #pragma omp parallel for num_threads(world.threads) schedule(static) \
     reduction(max                                                    \
               : vmax2) if (world.threads > 1 && P.size() >= kParallelMin)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const auto i = static_cast<std::size_t>(k);
     const std::uint32_t c = P.clump[i];
-    if (c == kNoClump) continue;
+    if (c >= owned) continue;  // no clump, or a ghost clump (its owner places the members)
     const Vec arm = R[c] * P.body_offset[i];
     P.pos[i] = C.pos[c] + arm;
     P.vel[i] = C.vel[c] + Dim<D>::cross(C.angvel[c], arm);
@@ -170,7 +171,7 @@ double integrate_clumps(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   auto& P = world.particles;
   auto& C = world.clumps;
-  const std::size_t nc = C.size();
+  const std::size_t nc = C.owned();  // (a decomposed world's ghost clumps are not integrated)
   if (nc == 0) return 0.0;
   const bool par = world.threads > 1 && nc >= kParallelMin / 2;
   const auto ncs = static_cast<std::ptrdiff_t>(nc);
@@ -194,8 +195,9 @@ double integrate_clumps(World<D>& world) {
   }
   // When the contact stage measured the fabric stress with member centres as the grains'
   // centres, the clump's own centre replaces them: add (X - x_m) (x) F_m for each member m
-  // (docs/physics.md, "Clumps"); one sum, in grain order.
-  if (world.measure_this_step) {
+  // (docs/physics.md, "Clumps"); one sum, in grain order. (A decomposed world adds it to the
+  // exact sums of the contact stage instead: contacts/contact_forces.cpp.)
+  if (world.measure_this_step && !world.domain) {
     auto& fabric = world.stats.fabric_stress;
     for (std::size_t i = 0; i < P.size(); ++i) {
       const std::uint32_t c = P.clump[i];

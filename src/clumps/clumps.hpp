@@ -46,8 +46,14 @@ struct Clumps {
   std::uint32_t next_id = 0;  // unique even after clumps were removed
   // Held in place (not integrated) while non-zero; empty when no clump is held.
   std::vector<std::uint8_t> held;
+  // In a decomposed world (domain/slab_domain.hpp) the last `ghosts` clumps are copies of
+  // clumps another rank owns, there to name the body their ghost members belong to: they are
+  // neither integrated nor measured here. Zero on one process.
+  std::size_t ghosts = 0;
 
   std::size_t size() const { return pos.size(); }
+  // The clumps this process integrates and measures: [0, owned()).
+  std::size_t owned() const { return pos.size() - ghosts; }
 
   // Body-to-world rotation matrix of an orientation.
   static Eigen::Matrix<double, D, D> matrix(const Orient& q) {

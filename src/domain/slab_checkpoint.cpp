@@ -19,11 +19,16 @@
 namespace geodem {
 
 template <int D>
-Particles<D> SlabDomain<D>::checkpoint(const World<D>& world, DomainCheckpoint<D>& saved) {
+Particles<D> SlabDomain<D>::checkpoint(const World<D>& world, DomainCheckpoint<D>& saved,
+                                       Clumps<D>& clumps) {
   const auto& P = world.particles;
   std::vector<GrainRecord<D>> grains;
   for (std::size_t i = 0; i < P.size(); ++i)
-    if (!(P.flags[i] & kGhost)) grains.push_back(GrainRecord<D>::of(P, i, key_[i]));
+    if (!(P.flags[i] & kGhost))
+      grains.push_back(GrainRecord<D>::of(P, i, key_[i], clump_id(world, i)));
+  std::vector<ClumpRecord<D>> own_clumps;
+  for (std::size_t c = 0; c < world.clumps.owned(); ++c)
+    own_clumps.push_back(ClumpRecord<D>::of(world.clumps, c));
   // The rows' history as records (pairs_ and walls_ carry records between builds: kept aside).
   std::vector<PairRecord<D>> carried_pairs;
   std::vector<WallRecord<D>> carried_walls;
@@ -33,17 +38,20 @@ Particles<D> SlabDomain<D>::checkpoint(const World<D>& world, DomainCheckpoint<D
   put_records(mine, grains);
   put_records(mine, pairs_);
   put_records(mine, walls_);
+  put_records(mine, own_clumps);
   pairs_.swap(carried_pairs), walls_.swap(carried_walls);
   const Bytes all = comm_->gather(mine);
   Particles<D> out;
+  clumps = Clumps<D>{};
   if (comm_->rank() != 0) return out;
-  grains.clear();
+  grains.clear(), own_clumps.clear();
   saved.pairs.clear(), saved.walls.clear();
   std::size_t at = 0;
   while (at < all.size()) {
     append_records(all, at, grains);
     append_records(all, at, saved.pairs);
     append_records(all, at, saved.walls);
+    append_records(all, at, own_clumps);
   }
   std::sort(grains.begin(), grains.end(),
             [](const auto& a, const auto& b) { return a.key < b.key; });
@@ -67,7 +75,14 @@ Particles<D> SlabDomain<D>::checkpoint(const World<D>& world, DomainCheckpoint<D
     saved.keys.push_back(g.key);
   }
   out.next_id = P.next_id;
+  // The clumps in id order; the members' clump ids become indices.
+  clumps.next_id = world.clumps.next_id;
+  if (clumped_) {
+    ghost_clumps_.clear();
+    replace_clumps(out, clumps, own_clumps);
+  }
   saved.grid_lo = grid_lo_, saved.grid_dims = grid_dims_, saved.sort_every = sort_every_;
+  saved.skin = skin_, saved.ghost_width = ghost_width_, saved.extent = extent_;
   return out;
 }
 
@@ -97,8 +112,8 @@ void SlabDomain<D>::rebuild_as_saved(World<D>& world) {
 }
 
 // (the class's other members are instantiated in slab_domain.cpp)
-template Particles<2> SlabDomain<2>::checkpoint(const World<2>&, DomainCheckpoint<2>&);
-template Particles<3> SlabDomain<3>::checkpoint(const World<3>&, DomainCheckpoint<3>&);
+template Particles<2> SlabDomain<2>::checkpoint(const World<2>&, DomainCheckpoint<2>&, Clumps<2>&);
+template Particles<3> SlabDomain<3>::checkpoint(const World<3>&, DomainCheckpoint<3>&, Clumps<3>&);
 template void SlabDomain<2>::rebuild_as_saved(World<2>&);
 template void SlabDomain<3>::rebuild_as_saved(World<3>&);
 

@@ -43,7 +43,6 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   auto refuse = [](const std::string& what) {
     throw InputError("", 0, "", what + " (docs/parallel.md)");
   };
-  if (world.clumps.size() > 0) refuse("clumps are not distributed over ranks yet");
   if (!world.spars.empty()) refuse("spar chains are not distributed over ranks yet");
   if (world.cell.periodic) refuse("a periodic cell is not distributed over ranks yet");
   auto d = std::shared_ptr<SlabDomain>(new SlabDomain(std::move(comm)));
@@ -54,7 +53,16 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   ExactSum radii;  // the same skin on every rank, whatever order the grains are in
   for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, P.radius[i]), radii.add(P.radius[i]);
   d->skin_ = n > 0 ? world.skin_factor * radii.value() / static_cast<double>(n) : 0.0;
-  d->ghost_width_ = 2.0 * rmax + d->skin_;
+  d->clumped_ = !P.clump.empty();
+  if (world.clumps.size() > 0) {
+    double offset = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (P.clump[i] != kNoClump) offset = std::max(offset, P.body_offset[i].norm());
+    d->extent_ = offset + 0.5 * d->skin_;
+  }
+  d->ghost_width_ = 2.0 * rmax + d->skin_ + d->extent_;
+  if (resumed)
+    d->skin_ = resumed->skin, d->ghost_width_ = resumed->ghost_width, d->extent_ = resumed->extent;
   // Cuts at equal grain counts along x.
   std::vector<double> xs(n);
   for (std::size_t i = 0; i < n; ++i) xs[i] = P.pos[i].x();
@@ -68,10 +76,12 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   // A grain moves less than the skin between builds, and ghosts come from the next slab only:
   // the inner slabs must be at least a ghost width across.
   for (std::size_t q = 1; q + 2 < d->cuts_.size(); ++q)
-    if (d->cuts_[q + 1] - d->cuts_[q] < d->ghost_width_)
+    if (d->cuts_[q + 1] - d->cuts_[q] < d->min_slab())
       refuse(std::to_string(ranks) + " ranks cut the grains into slabs " +
-             std::to_string(d->cuts_[q + 1] - d->cuts_[q]) + " m wide, less than the ghost width " +
-             std::to_string(d->ghost_width_) + " m (2 x largest radius + skin): use fewer ranks");
+             std::to_string(d->cuts_[q + 1] - d->cuts_[q]) + " m wide, less than " +
+             std::to_string(d->min_slab()) +
+             " m (the ghost width, 2 x largest radius + skin, and twice a clump's reach): use "
+             "fewer ranks");
   // The keys' grid: the grains' bounding box now, cells a ghost width across (grains that
   // leave the box later take the edge cells).
   d->sort_every_ = world.sort_interval;
@@ -98,10 +108,18 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   std::vector<std::uint64_t> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
     keys[i] = resumed ? resumed->keys[i] : d->cell_key(P.pos[i], P.id[i]);
-    if (d->owner(P.pos[i].x()) == me) mine.push_back(static_cast<std::uint32_t>(i));
+    if (d->owner(d->home_x(world, i)) == me) mine.push_back(static_cast<std::uint32_t>(i));
   }
   std::sort(mine.begin(), mine.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
+  // The clumps whose centre is in the slab, with all their members.
+  std::vector<ClumpRecord<D>> clumps;
+  for (std::size_t c = 0; c < world.clumps.size(); ++c)
+    if (d->owner(world.clumps.pos[c].x()) == me)
+      clumps.push_back(ClumpRecord<D>::of(world.clumps, c));
+  if (d->clumped_)
+    for (std::size_t i = 0; i < n; ++i) P.clump[i] = d->clump_id(world, i);
   P.permute(mine);
+  if (d->clumped_) d->replace_clumps(P, world.clumps, clumps);
   d->key_.resize(mine.size());
   for (std::size_t k = 0; k < mine.size(); ++k) d->key_[k] = keys[mine[k]];
   NeighbourList<D> none;
@@ -116,6 +134,18 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   world.domain = d;
   if (resumed) d->rebuild_as_saved(world);
   return d;
+}
+
+template <int D>
+double SlabDomain<D>::home_x(const World<D>& world, std::size_t i) const {
+  const auto& P = world.particles;
+  return clumped_ && P.clump[i] != kNoClump ? world.clumps.pos[P.clump[i]].x() : P.pos[i].x();
+}
+
+template <int D>
+std::uint32_t SlabDomain<D>::clump_id(const World<D>& world, std::size_t i) const {
+  const auto& P = world.particles;
+  return clumped_ && P.clump[i] != kNoClump ? world.clumps.id[P.clump[i]] : kNoClump;
 }
 
 template <int D>
@@ -260,8 +290,8 @@ void SlabDomain<D>::rebalance(const World<D>& world) {
     const double inside = b < kBins && total[b] > 0.0 ? (target - cumulative) / total[b] : 0.0;
     double cut = x0 + span * (static_cast<double>(b) + inside) / static_cast<double>(kBins);
     const auto uq = static_cast<std::size_t>(q);
-    double lo = old[uq - 1] + ghost_width_, hi = old[uq + 1] - ghost_width_;
-    if (q > 1) lo = std::max(lo, cuts_[uq - 1] + ghost_width_);
+    double lo = old[uq - 1] + min_slab(), hi = old[uq + 1] - min_slab();
+    if (q > 1) lo = std::max(lo, cuts_[uq - 1] + min_slab());
     cut = std::min(std::max(cut, lo), hi);
     cuts_[uq] = lo <= hi ? cut : old[uq];
   }
@@ -301,6 +331,14 @@ void SlabDomain<D>::grains_kept(World<D>& world, const std::vector<std::uint32_t
   const auto& P = world.particles;
   for (std::size_t i = 0; i < P.size(); ++i)
     if (P.id[i] < index_of_id_.size()) index_of_id_[P.id[i]] = static_cast<std::int32_t>(i);
+  // Removal keeps the clumps' order: the ghost clumps that are left are still the last.
+  auto& C = world.clumps;
+  if (C.size() > 0) {
+    std::vector<std::uint8_t> ghost(C.size(), 0);
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (P.clump[i] != kNoClump && (P.flags[i] & kGhost)) ghost[P.clump[i]] = 1;
+    C.ghosts = static_cast<std::size_t>(std::count(ghost.begin(), ghost.end(), 1));
+  }
   // (the ghost update's lists are made anew by the build before the next step's motion)
   send_lower_.clear(), send_upper_.clear(), recv_lower_.clear(), recv_upper_.clear();
 }

@@ -32,9 +32,9 @@ class SlabDomain final : public DomainHooks<D> {
  public:
   // Splits a world that every rank built identically (all grains, walls, materials): the cuts
   // put equal grain counts in the slabs; each rank keeps its own grains and the contact
-  // history they had, and the world gets this domain as its hooks. Throws InputError for
-  // what is not distributed yet (clumps, spar chains, a periodic cell) and when a slab
-  // would be thinner than the ghost width.
+  // history they had, and the world gets this domain as its hooks. A clump belongs to the rank
+  // of its centre, with all its members. Throws InputError for what is not distributed yet
+  // (spar chains, a periodic cell) and when a slab would be thinner than the ghost width.
   //
   // With `resumed`: the world was loaded from a checkpoint of a decomposed run (checkpoint()
   // below), on any number of ranks. The grains keep their keys, and the list is rebuilt as the
@@ -43,9 +43,9 @@ class SlabDomain final : public DomainHooks<D> {
   static std::shared_ptr<SlabDomain> distribute(World<D>& world, std::shared_ptr<DomainComm> comm,
                                                 const DomainCheckpoint<D>* resumed = nullptr);
   // A checkpoint (all ranks call it): returns on rank 0 the whole domain's grains in key order,
-  // without ghosts, and fills `saved` with their keys, the grid and every contact's history
-  // (each once); other ranks get nothing.
-  Particles<D> checkpoint(const World<D>& world, DomainCheckpoint<D>& saved);
+  // without ghosts, with its clumps in id order in `clumps`, and fills `saved` with their
+  // keys, the grid and every contact's history (each once); other ranks get nothing.
+  Particles<D> checkpoint(const World<D>& world, DomainCheckpoint<D>& saved, Clumps<D>& clumps);
 
   bool any_rank(bool here) override;
   double min_over_ranks(double here) override;
@@ -83,6 +83,12 @@ class SlabDomain final : public DomainHooks<D> {
   void exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower, Bytes& from_upper);
   std::uint64_t cell_key(const typename Dim<D>::Vec& x, std::uint32_t id) const;
   std::int64_t local_index(std::uint32_t id) const;
+  // Where a grain belongs: its centre, or a member's clump's centre (x).
+  double home_x(const World<D>& world, std::size_t i) const;
+  std::uint32_t clump_id(const World<D>& world, std::size_t i) const;
+  // The clumps anew (slab_clumps.cpp): `owned` then the ghost clumps that arrived, each by id;
+  // the grains' clump ids become indices.
+  void replace_clumps(Particles<D>& P, Clumps<D>& C, std::vector<ClumpRecord<D>>& owned);
   // History records (keyed by ids) of the listed contacts with a history: all of them, or
   // those of the grains marked in `only`.
   void collect_history(const World<D>& world, const std::vector<std::uint8_t>* only);
@@ -108,6 +114,13 @@ class SlabDomain final : public DomainHooks<D> {
   std::vector<std::uint32_t> new_index_;
   Bytes to_lower_, to_upper_, from_lower_, from_upper_;
   double ghost_width_ = 0.0, skin_ = 0.0;
+  // With clumps: how far a member's centre may lie from its clump's centre, which decides its
+  // rank (the largest offset, and half a skin for a centre that moved since the last build
+  // when a run resumes from it). Ghost widths and the thinnest slab grow by it.
+  bool clumped_ = false;
+  double extent_ = 0.0;
+  double min_slab() const { return ghost_width_ + extent_; }
+  std::vector<ClumpRecord<D>> clumps_out_down_, clumps_out_up_, ghost_clumps_;
   // History records to carry into the next build: from the world as distributed, or of
   // grains that arrived.
   std::vector<PairRecord<D>> pairs_;

@@ -45,17 +45,17 @@ void SlabDomain<D>::before_build(World<D>& world) {
       if (!(P.flags[i] & kGhost)) key_[i] = cell_key(P.pos[i], P.id[i]);
   // The new grains are sources: a grain held here (its index) or a record that arrived
   // (n_old + its place in arrived_), each with its key.
-  order_.clear(), arrived_.clear();
+  order_.clear(), arrived_.clear(), ghost_clumps_.clear();
   auto &down = out_down_, &up = out_up_;
   down.clear(), up.clear();
   std::vector<std::uint8_t> leaving(n_old, 0);
   for (std::size_t i = 0; i < n_old; ++i) {
     if (P.flags[i] & kGhost) continue;
-    const int to = owner(P.pos[i].x());
+    const int to = owner(home_x(world, i));
     if (to == me) {
       order_.push_back({key_[i], i});
     } else if (to == me - 1 || to == me + 1) {
-      (to < me ? down : up).push_back(GrainRecord<D>::of(P, i, key_[i]));
+      (to < me ? down : up).push_back(GrainRecord<D>::of(P, i, key_[i], clump_id(world, i)));
       leaving[i] = 1;
     } else {
       throw InstabilityError("grain " + std::to_string(P.id[i]) +
@@ -64,10 +64,22 @@ void SlabDomain<D>::before_build(World<D>& world) {
                              "grain, or slabs too thin");
     }
   }
+  // Clumps go with their members; those that stay and those that arrive are the rank's clumps.
+  const auto& C = world.clumps;
+  clumps_out_down_.clear(), clumps_out_up_.clear();
+  std::vector<ClumpRecord<D>> staying;
+  for (std::size_t c = 0; c < C.owned(); ++c) {
+    const int to = owner(C.pos[c].x());
+    (to == me  ? staying
+     : to < me ? clumps_out_down_
+               : clumps_out_up_)
+        .push_back(ClumpRecord<D>::of(C, c));
+  }
   // Grains that leave go with every history record they are part of.
   migrated_ += down.size() + up.size();
   collect_history(world, &leaving);
-  auto migration = [&](const std::vector<GrainRecord<D>>& grains, Bytes& b) {
+  auto migration = [&](const std::vector<GrainRecord<D>>& grains,
+                       const std::vector<ClumpRecord<D>>& clumps, Bytes& b) {
     std::vector<std::uint32_t> ids;
     for (const auto& g : grains) ids.push_back(g.id);
     std::sort(ids.begin(), ids.end());
@@ -81,9 +93,10 @@ void SlabDomain<D>::before_build(World<D>& world) {
     put_records(b, grains);
     put_records(b, pairs);
     put_records(b, walls);
+    put_records(b, clumps);
   };
-  migration(down, to_lower_);
-  migration(up, to_upper_);
+  migration(down, clumps_out_down_, to_lower_);
+  migration(up, clumps_out_up_, to_upper_);
   exchange(to_lower_, to_upper_, from_lower_, from_upper_);
   // The records sent stay here too (any that are still wanted here duplicate rows of the
   // list: the same bits, kept once).
@@ -96,30 +109,54 @@ void SlabDomain<D>::before_build(World<D>& world) {
       order_.push_back({arrived_[k].key, n_old + k});
     append_records(*in, at, pairs_);
     append_records(*in, at, walls_);
+    append_records(*in, at, staying);
   }
   std::sort(order_.begin(), order_.end());
+  std::sort(staying.begin(), staying.end(),
+            [](const auto& a, const auto& b) { return a.id < b.id; });
   // Ghosts: this rank's grains within the ghost width of a neighbour's slab, in key order.
+  // A ghost member brings its clump's record (the ghost clump names the body it belongs to).
   auto record = [&](const Source& src) {
-    return src.second < n_old ? GrainRecord<D>::of(P, src.second, src.first)
-                              : arrived_[src.second - n_old];
+    return src.second < n_old
+               ? GrainRecord<D>::of(P, src.second, src.first, clump_id(world, src.second))
+               : arrived_[src.second - n_old];
   };
   down.clear(), up.clear();
+  clumps_out_down_.clear(), clumps_out_up_.clear();
+  auto send_clump = [&](std::uint32_t id, std::vector<ClumpRecord<D>>& out) {
+    if (id == kNoClump || (!out.empty() && out.back().id == id)) return;
+    const auto it = std::lower_bound(staying.begin(), staying.end(), id,
+                                     [](const auto& r, std::uint32_t v) { return r.id < v; });
+    if (it == staying.end() || it->id != id)
+      throw std::runtime_error("clump " + std::to_string(id) + " of a grain held here is not");
+    out.push_back(*it);
+  };
   send_lower_.clear(), send_upper_.clear();  // sources for now, local indices below
   for (const Source& src : order_) {
     const double x =
         src.second < n_old ? P.pos[src.second].x() : arrived_[src.second - n_old].pos.x();
     if (me > 0 && x < cuts_[static_cast<std::size_t>(me)] + ghost_width_) {
       down.push_back(record(src));
+      send_clump(down.back().clump, clumps_out_down_);
       send_lower_.push_back(static_cast<std::uint32_t>(src.second));
     }
     if (me + 1 < ranks && x >= cuts_[static_cast<std::size_t>(me) + 1] - ghost_width_) {
       up.push_back(record(src));
+      send_clump(up.back().clump, clumps_out_up_);
       send_upper_.push_back(static_cast<std::uint32_t>(src.second));
     }
+  }
+  for (auto* out : {&clumps_out_down_, &clumps_out_up_}) {  // each once, by id
+    std::sort(out->begin(), out->end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+    out->erase(std::unique(out->begin(), out->end(),
+                           [](const auto& a, const auto& b) { return a.id == b.id; }),
+               out->end());
   }
   to_lower_.clear(), to_upper_.clear();
   put_records(to_lower_, down);
   put_records(to_upper_, up);
+  put_records(to_lower_, clumps_out_down_);
+  put_records(to_upper_, clumps_out_up_);
   exchange(to_lower_, to_upper_, from_lower_, from_upper_);
   recv_lower_.clear(), recv_upper_.clear();
   for (auto [in, recv] :
@@ -133,6 +170,7 @@ void SlabDomain<D>::before_build(World<D>& world) {
       order_.push_back({arrived_[k].key, n_old + k});
       recv->push_back(static_cast<std::uint32_t>(n_old + k));
     }
+    append_records(*in, at, ghost_clumps_);
   }
   // The rank's grains and ghosts, by key.
   std::sort(order_.begin(), order_.end());
@@ -151,7 +189,12 @@ void SlabDomain<D>::before_build(World<D>& world) {
   }
   for (std::size_t i = 0; i < n_old; ++i)
     old_to_new[i] = static_cast<std::int32_t>(local_index(P.id[i]));
+  if (clumped_) {  // members name their clump by id until the clumps are replaced
+    P.clump.resize(n_old, kNoClump), P.body_offset.resize(n_old, Dim<D>::Vec::Zero());
+    for (std::size_t i = 0; i < n_old; ++i) P.clump[i] = clump_id(world, i);
+  }
   reorder_grains(P, n_old);
+  if (clumped_) replace_clumps(P, world.clumps, staying);
   key_.resize(n);
   for (std::size_t k = 0; k < n; ++k) key_[k] = order_[k].first;
   for (auto* list : {&send_lower_, &send_upper_, &recv_lower_, &recv_upper_})
@@ -163,6 +206,8 @@ void SlabDomain<D>::before_build(World<D>& world) {
   std::vector<Source>().swap(order_);
   std::vector<GrainRecord<D>>().swap(arrived_);
   std::vector<std::uint32_t>().swap(new_index_);
+  for (auto* v : {&clumps_out_down_, &clumps_out_up_, &ghost_clumps_})
+    std::vector<ClumpRecord<D>>().swap(*v);
 #ifdef __GLIBC__
   malloc_trim(0);  // and to the system: freed blocks of the heap are kept by glibc otherwise
 #endif
@@ -191,6 +236,10 @@ void SlabDomain<D>::reorder_grains(Particles<D>& P, std::size_t n_old) const {
   gather(P.pos_at_build, [](const GrainRecord<D>& g) { return g.pos_at_build; });
   gather(P.id, [](const GrainRecord<D>& g) { return g.id; });
   if (!P.orient.empty()) gather(P.orient, [](const GrainRecord<D>& g) { return g.orient; });
+  if (clumped_) {
+    gather(P.clump, [](const GrainRecord<D>& g) { return g.clump; });
+    gather(P.body_offset, [](const GrainRecord<D>& g) { return g.body_offset; });
+  }
   // Forces are set afresh by the next force stage.
   P.force.assign(n, Dim<D>::Vec::Zero());
   P.torque.assign(n, Dim<D>::zero_rot());

@@ -215,7 +215,7 @@ double critical_timestep(const World<D>& world) {
     if (kt > 0.0) dt2 = std::min(dt2, m / kt);
     if (kr > 0.0) dt2 = std::min(dt2, inertia / kr);
   }
-  for (std::size_t c = 0; c < C.size(); ++c) {
+  for (std::size_t c = 0; c < C.owned(); ++c) {  // (a ghost clump is its owner's to check)
     const double kt = K.max_trans(n + c), kr = K.max_rot(n + c);
     if (kt > 0.0) dt2 = std::min(dt2, 1.0 / (C.inv_mass[c] * kt));
     if (kr > 0.0) dt2 = std::min(dt2, Clumps<D>::min_moment(C.inertia[c]) / kr);

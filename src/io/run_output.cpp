@@ -94,6 +94,7 @@ World<D> owned_grains(const World<D>& world) {
   World<D> own;
   own.time = world.time, own.step = world.step;
   own.particles = world.particles;
+  own.clumps.id = world.clumps.id;  // (what the frame reads of a member's clump)
   std::vector<std::uint32_t> keep;
   for (std::size_t i = 0; i < world.particles.size(); ++i)
     if (!(world.particles.flags[i] & kGhost)) keep.push_back(static_cast<std::uint32_t>(i));

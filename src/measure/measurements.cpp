@@ -12,18 +12,25 @@ namespace geodem {
 
 namespace {
 
-// Sum of term(i) over the grains: in blocks (base/parallel.hpp), or, in a decomposed world
-// (docs/parallel.md), over each rank's own grains exactly and added over ranks, so that every
-// rank has the domain's sum, the same for any number of ranks.
-template <int D, typename Term>
-double grain_sum(const World<D>& world, Term&& term) {
+// Sum of grain(i) over a decomposed world's own grains and clump(c) over its own clumps, exact
+// and added over ranks: every rank has the domain's sum, the same for any number of ranks.
+template <int D, typename GrainTerm, typename ClumpTerm>
+double owned_body_sum(const World<D>& world, GrainTerm&& grain, ClumpTerm&& clump) {
   const auto& P = world.particles;
-  if (!world.domain) return ordered_sum(P.size(), world.threads, 0.0, term);
   std::vector<ExactSum> s(1);
   for (std::size_t i = 0; i < P.size(); ++i)
-    if (!(P.flags[i] & kGhost)) s[0].add(term(i));
+    if (!(P.flags[i] & kGhost)) s[0].add(grain(i));
+  for (std::size_t c = 0; c < world.clumps.owned(); ++c) s[0].add(clump(c));
   world.domain->sum(s);
   return s[0].value();
+}
+
+// Sum of term(i) over the grains: in blocks (base/parallel.hpp), or, in a decomposed world
+// (docs/parallel.md), over each rank's own grains exactly and added over ranks.
+template <int D, typename Term>
+double grain_sum(const World<D>& world, Term&& term) {
+  if (!world.domain) return ordered_sum(world.particles.size(), world.threads, 0.0, term);
+  return owned_body_sum(world, term, [](std::size_t) { return 0.0; });
 }
 
 }  // namespace
@@ -32,12 +39,23 @@ double grain_sum(const World<D>& world, Term&& term) {
 template <int D>
 double kinetic_energy(const World<D>& world) {
   const auto& P = world.particles;
-  double e = grain_sum(world, [&](std::size_t i) {
+  const auto& C = world.clumps;
+  auto grain = [&](std::size_t i) {
     if (P.inv_mass[i] == 0.0 || P.member(i)) return 0.0;
     return 0.5 * P.vel[i].squaredNorm() / P.inv_mass[i] +
            0.5 * Dim<D>::rot_norm2(P.angvel[i]) / P.inv_inertia[i];
-  });
-  const auto& C = world.clumps;
+  };
+  auto rotation = [&](std::size_t c) {
+    if constexpr (D == 2)
+      return 0.5 * C.inertia[c] * C.angvel[c] * C.angvel[c];
+    else
+      return 0.5 * C.angmom[c].dot(C.angvel[c]);
+  };
+  if (world.domain)
+    return owned_body_sum(world, grain, [&](std::size_t c) {
+      return 0.5 * C.vel[c].squaredNorm() / C.inv_mass[c] + rotation(c);
+    });
+  double e = grain_sum(world, grain);
   for (std::size_t c = 0; c < C.size(); ++c) {
     e += 0.5 * C.vel[c].squaredNorm() / C.inv_mass[c];
     if constexpr (D == 2)
@@ -51,10 +69,14 @@ double kinetic_energy(const World<D>& world) {
 template <int D>
 double gravity_energy(const World<D>& world) {
   const auto& P = world.particles;
-  double e = -grain_sum(world, [&](std::size_t i) {
-    return P.inv_mass[i] > 0.0 && !P.member(i) ? P.pos[i].dot(world.gravity) / P.inv_mass[i] : 0.0;
-  });
   const auto& C = world.clumps;
+  auto grain = [&](std::size_t i) {
+    return P.inv_mass[i] > 0.0 && !P.member(i) ? P.pos[i].dot(world.gravity) / P.inv_mass[i] : 0.0;
+  };
+  if (world.domain)
+    return -owned_body_sum(
+        world, grain, [&](std::size_t c) { return C.pos[c].dot(world.gravity) / C.inv_mass[c]; });
+  double e = -grain_sum(world, grain);
   for (std::size_t c = 0; c < C.size(); ++c) e -= C.pos[c].dot(world.gravity) / C.inv_mass[c];
   return e;
 }
@@ -64,9 +86,14 @@ double body_weight(const World<D>& world) {
   const auto& P = world.particles;
   double m = 0.0;
   if (world.domain) {
-    m = grain_sum(world, [&](std::size_t i) {
-      return P.inv_mass[i] > 0.0 && !P.member(i) ? 1.0 / P.inv_mass[i] : 0.0;
-    });
+    const auto& C = world.clumps;
+    m = owned_body_sum(
+        world,
+        [&](std::size_t i) {
+          return P.inv_mass[i] > 0.0 && !P.member(i) ? 1.0 / P.inv_mass[i] : 0.0;
+        },
+        [&](std::size_t c) { return 1.0 / C.inv_mass[c]; });
+    return m * world.gravity.norm();
   } else {
     for (std::size_t i = 0; i < P.size(); ++i)
       if (P.inv_mass[i] > 0.0 && !P.member(i)) m += 1.0 / P.inv_mass[i];
@@ -78,8 +105,10 @@ double body_weight(const World<D>& world) {
 template <int D>
 double solid_volume(const World<D>& world) {
   const auto& P = world.particles;
-  double v = grain_sum(
-      world, [&](std::size_t i) { return P.member(i) ? 0.0 : Dim<D>::volume(P.radius[i]); });
+  auto grain = [&](std::size_t i) { return P.member(i) ? 0.0 : Dim<D>::volume(P.radius[i]); };
+  if (world.domain)
+    return owned_body_sum(world, grain, [&](std::size_t c) { return world.clumps.volume[c]; });
+  double v = grain_sum(world, grain);
   for (double cv : world.clumps.volume) v += cv;
   return v;
 }
@@ -109,17 +138,26 @@ double unbalanced_force_ratio(const World<D>& world) {
   if (nc == 0 || world.stats.sum_force <= 0.0) return std::numeric_limits<double>::quiet_NaN();
   // Fixed and held grains and clump members do not count.
   auto counts = [&](std::size_t i) { return P.inv_mass[i] != 0.0 && P.free_body(i); };
-  double sum = grain_sum(world, [&](std::size_t i) {
+  auto resultant = [&](std::size_t i) {
     return counts(i) ? (P.force[i] + world.gravity / P.inv_mass[i]).norm() : 0.0;
-  });
-  std::size_t nfree =
-      world.domain ? static_cast<std::size_t>(
-                         grain_sum(world, [&](std::size_t i) { return counts(i) ? 1.0 : 0.0; }))
-                   : ordered_sum(P.size(), world.threads, std::size_t{0},
-                                 [&](std::size_t i) -> std::size_t { return counts(i) ? 1 : 0; });
+  };
   const auto& C = world.clumps;  // resultants summed at the last integration
+  auto free_clump = [&](std::size_t c) { return C.held.empty() || !C.held[c]; };
+  if (world.domain) {
+    const double sum = owned_body_sum(world, resultant, [&](std::size_t c) {
+      return free_clump(c) ? (C.force[c] + world.gravity / C.inv_mass[c]).norm() : 0.0;
+    });
+    const double nfree = owned_body_sum(
+        world, [&](std::size_t i) { return counts(i) ? 1.0 : 0.0; },
+        [&](std::size_t c) { return free_clump(c) ? 1.0 : 0.0; });
+    if (nfree == 0.0) return 0.0;
+    return (sum / nfree) / (world.stats.sum_force / static_cast<double>(nc));
+  }
+  double sum = grain_sum(world, resultant);
+  std::size_t nfree = ordered_sum(P.size(), world.threads, std::size_t{0},
+                                  [&](std::size_t i) -> std::size_t { return counts(i) ? 1 : 0; });
   for (std::size_t c = 0; c < C.size(); ++c) {
-    if (!C.held.empty() && C.held[c]) continue;
+    if (!free_clump(c)) continue;
     sum += (C.force[c] + world.gravity / C.inv_mass[c]).norm();
     ++nfree;
   }

@@ -1,6 +1,8 @@
 // Measurements of the assembly, read by recorders and lab tests.
 #pragma once
 
+#include <array>
+
 #include "world/world.hpp"
 
 namespace geodem {
@@ -40,18 +42,33 @@ template <int D>
 std::uint64_t broken_bond_count(const World<D>& world);
 
 // Number of bodies (free grains and clumps; fixed grains included); in a decomposed world
-// (docs/parallel.md) the whole domain's, every rank's own grains counted.
+// (docs/parallel.md) the whole domain's, every rank's own grains and clumps counted.
 template <int D>
 std::size_t body_count(const World<D>& world) {
+  const auto& P = world.particles;
   if (world.domain) {
     std::vector<ExactSum> n(1);
-    for (auto f : world.particles.flags) n[0].add((f & kGhost) ? 0.0 : 1.0);
+    for (auto f : P.flags) n[0].add((f & (kGhost | kClumpMember)) ? 0.0 : 1.0);
+    n[0].add(static_cast<double>(world.clumps.owned()));
     world.domain->sum(n);
     return static_cast<std::size_t>(n[0].value());
   }
   std::size_t members = 0;
-  for (auto c : world.particles.clump) members += c != kNoClump;
-  return world.particles.size() - members + world.clumps.size();
+  for (auto c : P.clump) members += c != kNoClump;
+  return P.size() - members + world.clumps.size();
+}
+
+// Numbers of grains (clump members included) and of clumps; in a decomposed world the whole
+// domain's.
+template <int D>
+std::array<std::size_t, 2> grain_and_clump_counts(const World<D>& world) {
+  const auto& P = world.particles;
+  if (!world.domain) return {P.size(), world.clumps.size()};
+  std::vector<ExactSum> n(2);
+  for (auto f : P.flags) n[0].add((f & kGhost) ? 0.0 : 1.0);
+  n[1].add(static_cast<double>(world.clumps.owned()));
+  world.domain->sum(n);
+  return {static_cast<std::size_t>(n[0].value()), static_cast<std::size_t>(n[1].value())};
 }
 
 // Mean resultant force on the bodies (contacts + gravity) over the mean contact

@@ -383,8 +383,9 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   results["time"] = w.time;
   results["steps"] = w.step;
   results["dt"] = w.dt;
-  results["particles"] = domain ? body_count(w) : w.particles.size();
-  results["clumps"] = w.clumps.size();
+  const auto [grains, clumps] = grain_and_clump_counts(w);
+  results["particles"] = grains;
+  results["clumps"] = clumps;
   if (s.bonds_initial) {
     results["bonds_created"] = bonds_created;
     results["bonds_broken"] = broken_bond_count(w);
@@ -436,7 +437,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
 
   nlohmann::json timing = timing_json(w, wall_s, w.step, opt.threads);
   if (domain) {  // the whole domain's grains and rate, rank 0's times
-    const std::size_t all = body_count(w);
+    const std::size_t all = grains;
     timing["ranks"] = domain->ranks();
     timing["particles"] = all;
     timing["particle_steps_per_s"] =

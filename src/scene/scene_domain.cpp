@@ -35,7 +35,6 @@ std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>&
   auto refuse = [&](const std::string& key, const std::string& what) {
     geodem::refuse(s, key, what);
   };
-  if (world.clumps.size() > 0) refuse("clumps", "clumps are not distributed");
   if (!world.spars.empty()) refuse("chains", "spar chains are not distributed");
   if (world.cell.periodic) refuse("cell", "a periodic cell is not distributed");
   try {
@@ -98,7 +97,7 @@ DomainWorldOnRank0<D>::DomainWorldOnRank0(World<D>& world, SlabDomain<D>* domain
                                           DomainCheckpoint<D>& saved)
     : world_(world), saved_(saved) {
   if (!domain) return;
-  grains_ = domain->checkpoint(world, saved);
+  grains_ = domain->checkpoint(world, saved, clumps_);
   broken_bonds_ = broken_bond_count(world);
   if (domain->rank() != 0) return;
   swap();
@@ -114,6 +113,7 @@ DomainWorldOnRank0<D>::~DomainWorldOnRank0() {
 template <int D>
 void DomainWorldOnRank0<D>::swap() {
   std::swap(world_.particles, grains_);
+  std::swap(world_.clumps, clumps_);
   world_.nlist.swap_rows(rows_);
   std::swap(world_.broken_bonds, broken_bonds_);
 }

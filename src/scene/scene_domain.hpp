@@ -18,16 +18,16 @@ namespace geodem {
 void check_decomposable(const SceneSettings& s);
 
 // Decomposes the world over the ranks of MPI_COMM_WORLD (`resumed`: a world loaded from a
-// decomposed run's checkpoint, SlabDomain::distribute); throws InputError for clumps, chains
-// and a periodic cell (not distributed yet) and for slabs thinner than the ghost width.
+// decomposed run's checkpoint, SlabDomain::distribute); throws InputError for chains and a
+// periodic cell (not distributed yet) and for slabs thinner than the ghost width.
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
                                                const DomainCheckpoint<D>* resumed = nullptr);
 
 // For a checkpoint of a decomposed run (all ranks make one): while it lives, rank 0's world
-// holds the whole domain's grains in key order, an empty neighbour list and the domain's count
-// of broken bonds, and `saved` the keys and contact history (SlabDomain::checkpoint); then the
-// rank's own state comes back. Without a domain it does nothing.
+// holds the whole domain's grains in key order, its clumps in id order, an empty neighbour list
+// and the domain's count of broken bonds, and `saved` the keys and contact history
+// (SlabDomain::checkpoint); then the rank's own state comes back. Without a domain it does nothing.
 template <int D>
 class DomainWorldOnRank0 {
  public:
@@ -42,6 +42,7 @@ class DomainWorldOnRank0 {
   DomainCheckpoint<D>& saved_;
   bool swapped_ = false;
   Particles<D> grains_;
+  Clumps<D> clumps_;
   NeighbourList<D> rows_;
   std::uint64_t broken_bonds_ = 0;
 };
