@@ -23,5 +23,5 @@ cmake --build build-sanitize -j "$(nproc)" --target geodem_unit_tests geodem_val
   geodem_fuzz_replay
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-sanitize -j "$(nproc)" -L "unit|validation" \
-  -E "EnergyConservation|Deposit|ElementTests.CyclicModulus|PeriodicCellTest.ServoHolds|Triaxial.Undrained|(ThreadDeterminism|SurfacePressureTest|Triaxial|PeriodicSearchTest|ContactHistory.RebuildsDoNotChangeTheRun|DomainTest|DomainClumpsTest).*3D" \
+  -E "EnergyConservation|Deposit|ElementTests.CyclicModulus|PeriodicCellTest.ServoHolds|Triaxial.Undrained|(ThreadDeterminism|SurfacePressureTest|Triaxial|PeriodicSearchTest|ContactHistory.RebuildsDoNotChangeTheRun|DomainTest|DomainClumpsTest|DomainSparsTest).*3D" \
   --output-on-failure

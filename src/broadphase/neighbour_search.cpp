@@ -143,6 +143,7 @@ void list_spar_pairs(World<D>& world, const Grid<D>& g, double rmax) {
           const std::uint32_t cell = g.cell_index({cx, cy, cz});
           for (std::uint32_t s = g.cell_start[cell]; s < g.cell_start[cell + 1]; ++s) {
             const std::uint32_t j = g.sorted[s];
+            if (P.flags[j] & kGhost) continue;  // its owner computes its contacts
             const double t = std::clamp(spar_parameter(S, e, P.pos[j]), 0.0, 1.0);
             const Vec q = (1.0 - t) * a + t * b;
             const double r = P.radius[j] + S.half_thickness[e] + L.skin;

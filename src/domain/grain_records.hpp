@@ -108,11 +108,21 @@ struct WallRecord {
   ContactExtra<D> extra;
 };
 
+// A grain-spar contact's tangential spring: grain id, element index (every rank holds the
+// whole chains).
+template <int D>
+struct SparRecord {
+  std::uint32_t id, element;
+  TangentSpring<D> spring;
+};
+
 // Records are stored as their bytes in checkpoints too (base/state_archive.hpp).
 template <int D>
 struct IsPlainData<PairRecord<D>> : std::true_type {};
 template <int D>
 struct IsPlainData<WallRecord<D>> : std::true_type {};
+template <int D>
+struct IsPlainData<SparRecord<D>> : std::true_type {};
 
 // What a checkpoint of a decomposed run keeps besides the world's state (whose grains are
 // saved in key order, without ghosts, and whose neighbour list is empty): the grid of the
@@ -128,10 +138,11 @@ struct DomainCheckpoint {
   std::vector<std::uint64_t> keys;
   std::vector<PairRecord<D>> pairs;
   std::vector<WallRecord<D>> walls;
+  std::vector<SparRecord<D>> spars;
   template <class Archive>
   void visit(Archive& a) {
     a(grid_lo), a(grid_dims), a(sort_every), a(skin), a(ghost_width), a(extent);
-    a(keys), a(pairs), a(walls);
+    a(keys), a(pairs), a(walls), a(spars);
   }
 };
 

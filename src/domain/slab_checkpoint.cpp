@@ -32,25 +32,28 @@ Particles<D> SlabDomain<D>::checkpoint(const World<D>& world, DomainCheckpoint<D
   // The rows' history as records (pairs_ and walls_ carry records between builds: kept aside).
   std::vector<PairRecord<D>> carried_pairs;
   std::vector<WallRecord<D>> carried_walls;
-  pairs_.swap(carried_pairs), walls_.swap(carried_walls);
+  std::vector<SparRecord<D>> carried_spars;
+  pairs_.swap(carried_pairs), walls_.swap(carried_walls), spars_.swap(carried_spars);
   collect_history(world, nullptr);
   Bytes mine;
   put_records(mine, grains);
   put_records(mine, pairs_);
   put_records(mine, walls_);
+  put_records(mine, spars_);
   put_records(mine, own_clumps);
-  pairs_.swap(carried_pairs), walls_.swap(carried_walls);
+  pairs_.swap(carried_pairs), walls_.swap(carried_walls), spars_.swap(carried_spars);
   const Bytes all = comm_->gather(mine);
   Particles<D> out;
   clumps = Clumps<D>{};
   if (comm_->rank() != 0) return out;
   grains.clear(), own_clumps.clear();
-  saved.pairs.clear(), saved.walls.clear();
+  saved.pairs.clear(), saved.walls.clear(), saved.spars.clear();
   std::size_t at = 0;
   while (at < all.size()) {
     append_records(all, at, grains);
     append_records(all, at, saved.pairs);
     append_records(all, at, saved.walls);
+    append_records(all, at, saved.spars);
     append_records(all, at, own_clumps);
   }
   std::sort(grains.begin(), grains.end(),
@@ -65,6 +68,9 @@ Particles<D> SlabDomain<D>::checkpoint(const World<D>& world, DomainCheckpoint<D
                     saved.pairs.end());
   std::sort(saved.walls.begin(), saved.walls.end(), [](const auto& x, const auto& y) {
     return std::tie(x.id, x.wall) < std::tie(y.id, y.wall);
+  });
+  std::sort(saved.spars.begin(), saved.spars.end(), [](const auto& x, const auto& y) {
+    return std::tie(x.id, x.element) < std::tie(y.id, y.element);
   });
   out.reserve(grains.size());
   if (!P.orient.empty()) out.orient.reserve(grains.size());
@@ -91,16 +97,18 @@ void SlabDomain<D>::rebuild_as_saved(World<D>& world) {
   auto& P = world.particles;
   // The positions of the last build, carried through the build's renumbering in pos_at_build.
   std::swap(P.pos, P.pos_at_build);
-  const std::vector<Wall<D>> walls = world.walls;  // put back bit for bit below
+  std::swap(world.spars.pos, world.spars.pos_at_build);  // the chains' nodes likewise
+  const std::vector<Wall<D>> walls = world.walls;        // put back bit for bit below
   for (auto& w : world.walls) w.point -= w.displacement, w.end -= w.displacement;
   const double radius_growth = world.radius_growth;
   const std::uint64_t builds = world.nlist.builds;
   // (the count before that build: keys are retaken from those positions if it retook them)
   if (builds > 0) world.nlist.builds = builds - 1;
   before_build(world);
-  std::vector<typename Dim<D>::Vec> now = P.pos_at_build;
+  std::vector<typename Dim<D>::Vec> now = P.pos_at_build, nodes_now = world.spars.pos_at_build;
   build_neighbour_list(world);  // pos_at_build = the positions of the last build
   P.pos = std::move(now);
+  world.spars.pos = std::move(nodes_now);
   world.walls = walls;
   // The bound on the grains' displacement since that build is each rank's own (from its
   // grains' speeds) and the checkpoint has rank 0's: the first step measures them instead.

@@ -43,7 +43,6 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   auto refuse = [](const std::string& what) {
     throw InputError("", 0, "", what + " (docs/parallel.md)");
   };
-  if (!world.spars.empty()) refuse("spar chains are not distributed over ranks yet");
   if (world.cell.periodic) refuse("a periodic cell is not distributed over ranks yet");
   auto d = std::shared_ptr<SlabDomain>(new SlabDomain(std::move(comm)));
   auto& P = world.particles;
@@ -100,7 +99,7 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
           static_cast<std::uint64_t>(std::floor((hi[k] - lo[k]) / d->ghost_width_)) + 1;
   }
   if (resumed) {
-    d->pairs_ = resumed->pairs, d->walls_ = resumed->walls;
+    d->pairs_ = resumed->pairs, d->walls_ = resumed->walls, d->spars_ = resumed->spars;
   } else {
     d->collect_history(world, nullptr);
   }
@@ -313,12 +312,16 @@ void SlabDomain<D>::collect_history(const World<D>& world, const std::vector<std
       if (loaded<D>(L.spring[k], e))
         pairs_.push_back(pair_record<D>(P.id[i], P.id[L.other[k]], L.spring[k], e));
     }
-    if (L.wall_start.size() != n + 1 || (only && !(*only)[i])) continue;
-    for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
-      const ContactExtra<D>& e = wall_extras ? L.wall_extra[k] : none;
-      if (loaded<D>(L.wall_spring[k], e))
-        walls_.push_back({P.id[i], L.wall[k], L.wall_spring[k], e});
-    }
+    if (only && !(*only)[i]) continue;
+    if (L.wall_start.size() == n + 1)
+      for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
+        const ContactExtra<D>& e = wall_extras ? L.wall_extra[k] : none;
+        if (loaded<D>(L.wall_spring[k], e))
+          walls_.push_back({P.id[i], L.wall[k], L.wall_spring[k], e});
+      }
+    if (L.spar_start.size() == n + 1)
+      for (std::uint32_t k = L.spar_start[i]; k < L.spar_start[i + 1]; ++k)
+        if (!zero_bits(L.spar_spring[k])) spars_.push_back({P.id[i], L.spar[k], L.spar_spring[k]});
   }
 }
 

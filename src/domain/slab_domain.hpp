@@ -33,8 +33,9 @@ class SlabDomain final : public DomainHooks<D> {
   // Splits a world that every rank built identically (all grains, walls, materials): the cuts
   // put equal grain counts in the slabs; each rank keeps its own grains and the contact
   // history they had, and the world gets this domain as its hooks. A clump belongs to the rank
-  // of its centre, with all its members. Throws InputError for what is not distributed yet
-  // (spar chains, a periodic cell) and when a slab would be thinner than the ghost width.
+  // of its centre, with all its members; every rank holds the whole spar chains (their loads
+  // are summed over ranks). Throws InputError for what is not distributed yet (a periodic
+  // cell) and when a slab would be thinner than the ghost width.
   //
   // With `resumed`: the world was loaded from a checkpoint of a decomposed run (checkpoint()
   // below), on any number of ranks. The grains keep their keys, and the list is rebuilt as the
@@ -125,6 +126,7 @@ class SlabDomain final : public DomainHooks<D> {
   // grains that arrived.
   std::vector<PairRecord<D>> pairs_;
   std::vector<WallRecord<D>> walls_;
+  std::vector<SparRecord<D>> spars_;
   // Ghost update: this rank's grains sent to the lower and upper neighbour (local indices, in
   // the order sent), and where the ghosts from each go.
   std::vector<std::uint32_t> send_lower_, send_upper_, recv_lower_, recv_upper_;

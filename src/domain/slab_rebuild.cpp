@@ -85,14 +85,18 @@ void SlabDomain<D>::before_build(World<D>& world) {
     std::sort(ids.begin(), ids.end());
     std::vector<PairRecord<D>> pairs;
     std::vector<WallRecord<D>> walls;
+    std::vector<SparRecord<D>> spars;
     for (const auto& p : pairs_)
       if (contains(ids, p.a) || contains(ids, p.b)) pairs.push_back(p);
     for (const auto& w : walls_)
       if (contains(ids, w.id)) walls.push_back(w);
+    for (const auto& r : spars_)
+      if (contains(ids, r.id)) spars.push_back(r);
     b.clear();
     put_records(b, grains);
     put_records(b, pairs);
     put_records(b, walls);
+    put_records(b, spars);
     put_records(b, clumps);
   };
   migration(down, clumps_out_down_, to_lower_);
@@ -109,6 +113,7 @@ void SlabDomain<D>::before_build(World<D>& world) {
       order_.push_back({arrived_[k].key, n_old + k});
     append_records(*in, at, pairs_);
     append_records(*in, at, walls_);
+    append_records(*in, at, spars_);
     append_records(*in, at, staying);
   }
   std::sort(order_.begin(), order_.end());
@@ -203,6 +208,7 @@ void SlabDomain<D>::before_build(World<D>& world) {
   // The scratch goes back: between builds a rank holds what one process would.
   std::vector<PairRecord<D>>().swap(pairs_);
   std::vector<WallRecord<D>>().swap(walls_);
+  std::vector<SparRecord<D>>().swap(spars_);
   std::vector<Source>().swap(order_);
   std::vector<GrainRecord<D>>().swap(arrived_);
   std::vector<std::uint32_t>().swap(new_index_);
@@ -345,6 +351,34 @@ void SlabDomain<D>::renumber_rows(World<D>& world, const std::vector<std::int32_
     if (extras) rows.wall_extra.push_back(extra);
   }
   for (std::size_t i = 0; i < n; ++i) rows.wall_start[i + 1] += rows.wall_start[i];
+  // Grain-spar rows the same way: the rank's own grains, by element.
+  if (!world.spars.empty()) {
+    std::vector<std::tuple<std::uint32_t, std::uint32_t, TangentSpring<D>>> spars;
+    if (have_old && L.spar_start.size() == n_old + 1)
+      for (std::size_t i = 0; i < n_old; ++i)
+        for (std::uint32_t k = L.spar_start[i]; k < L.spar_start[i + 1]; ++k)
+          if (old_to_new[i] >= 0 && !ghost(old_to_new[i]) && !zero_bits(L.spar_spring[k]))
+            spars.emplace_back(static_cast<std::uint32_t>(old_to_new[i]), L.spar[k],
+                               L.spar_spring[k]);
+    for (const auto& r : spars_) {
+      const std::int64_t i = local_index(r.id);
+      if (i >= 0 && !ghost(i))
+        spars.emplace_back(static_cast<std::uint32_t>(i), r.element, r.spring);
+    }
+    std::sort(spars.begin(), spars.end(), [](const auto& x, const auto& y) {
+      return std::tie(std::get<0>(x), std::get<1>(x)) < std::tie(std::get<0>(y), std::get<1>(y));
+    });
+    rows.spar_start.assign(n + 1, 0);
+    for (std::size_t k = 0; k < spars.size(); ++k) {
+      const auto& [row, element, spring] = spars[k];
+      if (k > 0 && std::get<0>(spars[k - 1]) == row && std::get<1>(spars[k - 1]) == element)
+        continue;
+      ++rows.spar_start[row + 1];
+      rows.spar.push_back(element);
+      rows.spar_spring.push_back(spring);
+    }
+    for (std::size_t i = 0; i < n; ++i) rows.spar_start[i + 1] += rows.spar_start[i];
+  }
   L.swap_rows(rows);
 }
 

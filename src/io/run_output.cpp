@@ -164,7 +164,7 @@ void VtkSeries<D>::write(const World<D>& world) {
       pvd_.add(world.time, name, 1);
     }
   }
-  if (!world.spars.empty()) {
+  if (!world.spars.empty() && root) {  // (every rank holds the whole chains)
     std::snprintf(name, sizeof name, "spars_%06d.vtp", count_);
     write_spars_vtp(dir_ + "/vtk/" + name, world);
     pvd_.add(world.time, name, 2);

@@ -35,7 +35,6 @@ std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>&
   auto refuse = [&](const std::string& key, const std::string& what) {
     geodem::refuse(s, key, what);
   };
-  if (!world.spars.empty()) refuse("chains", "spar chains are not distributed");
   if (world.cell.periodic) refuse("cell", "a periodic cell is not distributed");
   try {
     return SlabDomain<D>::distribute(world, mpi_domain_comm(), resumed);

@@ -18,8 +18,8 @@ namespace geodem {
 void check_decomposable(const SceneSettings& s);
 
 // Decomposes the world over the ranks of MPI_COMM_WORLD (`resumed`: a world loaded from a
-// decomposed run's checkpoint, SlabDomain::distribute); throws InputError for chains and a
-// periodic cell (not distributed yet) and for slabs thinner than the ghost width.
+// decomposed run's checkpoint, SlabDomain::distribute); throws InputError for a periodic cell
+// (not distributed yet) and for slabs thinner than the ghost width.
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
                                                const DomainCheckpoint<D>* resumed = nullptr);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "base/exact_sum.hpp"
 #include "contacts/contact_law.hpp"
 #include "structures/spar_geometry.hpp"
 
@@ -108,8 +109,12 @@ double spar_min_mass_over_stiffness(const World<D>& world) {
   }
   // Grain contacts: the whole normal and tangential stiffness on both nodes (the
   // weights are at most 1), a slight overestimate that keeps the step safe.
+  // A decomposed world: each rank has its own grains' contacts; their stiffness on each node
+  // is summed exactly, then over ranks, so that every rank finds the same step.
   const auto& P = world.particles;
   const auto& L = world.nlist;
+  static thread_local std::vector<ExactSum> contact_k;
+  if (world.domain) contact_k.assign(S.nodes(), ExactSum{});
   if (L.spar_start.size() == P.size() + 1) {
     for (std::size_t i = 0; i < P.size(); ++i)
       for (std::uint32_t s = L.spar_start[i]; s < L.spar_start[i + 1]; ++s) {
@@ -122,10 +127,19 @@ double spar_min_mass_over_stiffness(const World<D>& world) {
         const double r2 = wall_partner_radius(law, r);
         const NormalResult nr = normal_force(law, r, r2, 0.0, delta, 0.0);
         const double kn = normal_stiffness(law, r, r2, nr.fn, delta);
+        if (world.domain) {
+          contact_k[S.node_a[e]].add(std::max(kn, nr.kt));
+          contact_k[S.node_b[e]].add(std::max(kn, nr.kt));
+          continue;
+        }
         const Vec ks = Vec::Constant(std::max(kn, nr.kt));
         k[S.node_a[e]] += ks;
         k[S.node_b[e]] += ks;
       }
+  }
+  if (world.domain) {
+    world.domain->sum(contact_k);
+    for (std::size_t i = 0; i < S.nodes(); ++i) k[i] += Vec::Constant(contact_k[i].value());
   }
   for (std::size_t i = 0; i < S.nodes(); ++i) {
     if (S.driven(i)) continue;

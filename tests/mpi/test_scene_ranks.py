@@ -2,7 +2,8 @@
 """`mpirun -n K geodem run scene.toml` spreads one scene over K ranks with the same bits for any
 K: a 3D settle (Hertz law with rolling resistance, VTK frames in pieces), a 2D biaxial test of
 bonded discs and pair clumps (servo-controlled walls over two stages, bonds breaking and clumps
-lying across rank boundaries)
+lying across rank boundaries), a pull-out of a sheet (a spar chain every rank holds whole,
+its loads summed over the ranks)
 and the staged example (a wall removed, grains excavated, a servo-loaded plate) on 1, 2 and 4
 ranks (oversubscribed) write the same history.csv (every column but the wall-clock time), the
 same particles.csv and the same results in summary.json. Killed (SIGTERM, or SIGKILL
@@ -88,7 +89,7 @@ def main() -> int:
         return subprocess.run(args, env=env, text=True, capture_output=True, timeout=600)
 
     with tempfile.TemporaryDirectory() as tmp:
-        for scenario in ("settle3d.toml", "biaxial2d.toml", STAGED):
+        for scenario in ("settle3d.toml", "biaxial2d.toml", "pullout2d.toml", STAGED):
             ref = None
             for ranks in (1, 2, 4):
                 out = os.path.join(tmp, f"{os.path.basename(scenario)}.{ranks}")
@@ -120,6 +121,12 @@ def main() -> int:
                           f"draw {sum(lines)} contacts, the history's last row counts {contacts}")
                     check(res["stop_reason"].startswith("at rest"),
                           f"{scenario} on {ranks} ranks stopped: {res['stop_reason']}")
+                elif scenario == "pullout2d.toml":
+                    sheet = res["chains"]["sheet"]
+                    check([st["stop_reason"] for st in res["stages"]] == ["end of duration"] * 2
+                          and sheet["tension_last"] > 500.0,
+                          f"{scenario} on {ranks} ranks: pulled with "
+                          f"{sheet['tension_last']:.0f} N/m at the end")
                 elif scenario == STAGED:
                     check([st["stop_reason"][:7] for st in res["stages"]] == ["at rest"] * 4 and
                           res["particles"] < 1500,
@@ -149,7 +156,8 @@ def main() -> int:
         # rank at a step they agree on, with a checkpoint; SIGKILL leaves the last periodic one
         # (and history rows after it, which the resumed run drops).
         for scenario, first, then, sig, at in (("settle3d.toml", 2, 4, signal.SIGTERM, 3000),
-                                               ("biaxial2d.toml", 4, 1, signal.SIGKILL, 6000)):
+                                               ("biaxial2d.toml", 4, 1, signal.SIGKILL, 6000),
+                                               ("pullout2d.toml", 2, 4, signal.SIGKILL, 20000)):
             out = os.path.join(tmp, f"{scenario}.killed")
             args = [mpirun, "-n", str(first), geodem, "run", os.path.join(HERE, scenario),
                     "--out", out, "--quiet", "--set", "checkpoint.every_steps=1000"]
