@@ -65,10 +65,11 @@ void start_stage(const SceneSettings& s, std::size_t k, World<D>& w, bool replay
     if (!st.clouds.empty()) {
       std::vector<Sphere<D>> placed = spheres_of<D>(w.particles);
       Random rng(s.seed + 7919 * (k + 1));  // a stream of its own per stage
+      const std::size_t before = w.particles.size();
       for (std::size_t c = 0; c < st.clouds.size(); ++c)
         add_cloud(s, st.clouds[c], "stages." + std::to_string(k) + ".clouds." + std::to_string(c),
                   w, rng, placed);
-      w.rebuild_needed = true;
+      add_list_rows_for_new_grains(w, before);
     }
   }
   for (const auto& m : st.walls) {

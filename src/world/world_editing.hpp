@@ -104,6 +104,18 @@ std::size_t remove_grains(World<D>& w, const std::vector<char>& remove,
   return removed;
 }
 
+// After grains were appended to the world (a stage's cloud): the neighbour list gets empty
+// rows for them, so that the next build still merges the other grains' springs and bonds
+// (a list whose rows do not match the grains is dropped whole by the build).
+template <int D>
+void add_list_rows_for_new_grains(World<D>& w, std::size_t grains_before) {
+  auto& L = w.nlist;
+  const std::size_t n = w.particles.size();
+  for (auto* rows : {&L.start, &L.wall_start, &L.spar_start})
+    if (rows->size() == grains_before + 1) rows->resize(n + 1, rows->back());
+  w.rebuild_needed = true;
+}
+
 // The grain-wall pair laws for the current walls (after walls were added or removed):
 // each from the grain's and the wall's materials, as World::resolve_pair_laws does.
 template <int D>

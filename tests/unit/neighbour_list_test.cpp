@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 #include <set>
 #include <string>
@@ -346,6 +347,58 @@ TYPED_TEST(NeighbourListTest, EditsKeepTheHistoryOfWhatRemains) {
   for (const auto& [id, wall] : wall_pairs) expected += wall != 1 ? 1 : 0;
   EXPECT_EQ(still, expected);
   EXPECT_LT(expected, wall_pairs.size());
+}
+
+// Grains appended between builds (a stage's cloud): with empty list rows for them, the next
+// build keeps every spring of the grains that were there (labelled by their ids) and lists the
+// new grains' pairs unloaded.
+TYPED_TEST(NeighbourListTest, AddedGrainsKeepTheHistoryOfTheOthers) {
+  constexpr int D = TypeParam::value;
+  World<D> w = random_cloud<D>(Cloud::kUniform, 400, D == 2 ? 35.0 : 12.0, 7);
+  build_neighbour_list(w);
+  auto& P = w.particles;
+  auto& L = w.nlist;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, double> labelled;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+      const auto a = std::min(P.id[i], P.id[L.other[k]]), b = std::max(P.id[i], P.id[L.other[k]]);
+      const double label = 1.0 + a * 1000.0 + b;
+      labelled[{a, b}] = label;
+      const double seen = P.id[i] < P.id[L.other[k]] ? label : -label;  // from the row's grain
+      if constexpr (D == 2) {
+        L.spring[k] = seen;
+      } else {
+        L.spring[k] = Vec<D>(seen, 0.0, 0.0);
+      }
+    }
+  ASSERT_GT(labelled.size(), 100u);
+  const std::size_t before = P.size();
+  // Grains beside the cloud, touching each other.
+  for (int k = 0; k < 20; ++k) P.add(vec<D>(-10.0 - 1.9 * k, 0.0, 0.0), 1.0, 1000.0, 0);
+  add_list_rows_for_new_grains(w, before);
+  build_neighbour_list(w);
+  std::size_t kept = 0, fresh = 0;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+      const auto a = std::min(P.id[i], P.id[L.other[k]]), b = std::max(P.id[i], P.id[L.other[k]]);
+      if (a >= before) {
+        ++fresh;
+        EXPECT_EQ(L.spring[k], unloaded_spring<D>());
+        continue;
+      }
+      const auto it = labelled.find({a, b});
+      ASSERT_TRUE(it != labelled.end());
+      double got;
+      if constexpr (D == 2) {
+        got = std::abs(L.spring[k]);
+      } else {
+        got = std::abs(L.spring[k].x());
+      }
+      EXPECT_EQ(got, it->second) << a << "-" << b;
+      kept += got == it->second;
+    }
+  EXPECT_EQ(kept, labelled.size());
+  EXPECT_GE(fresh, 19u);
 }
 
 }  // namespace
