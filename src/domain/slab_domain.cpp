@@ -347,6 +347,57 @@ void SlabDomain<D>::grains_kept(World<D>& world, const std::vector<std::uint32_t
 }
 
 template <int D>
+void SlabDomain<D>::grains_added(World<D>& world, std::size_t first_grain,
+                                 std::size_t first_clump) {
+  auto& P = world.particles;
+  auto& C = world.clumps;
+  const int me = comm_->rank();
+  clumped_ = !P.clump.empty();
+  // The new grains this rank owns, the others dropped (every rank added them all).
+  std::vector<std::uint32_t> keep(first_grain);
+  for (std::size_t i = 0; i < first_grain; ++i) keep[i] = static_cast<std::uint32_t>(i);
+  double rmax = 0.0, offset = 0.0;
+  for (std::size_t i = first_grain; i < P.size(); ++i) {
+    rmax = std::max(rmax, P.radius[i]);
+    if (clumped_ && P.clump[i] != kNoClump) offset = std::max(offset, P.body_offset[i].norm());
+    if (owner(home_x(world, i)) == me) keep.push_back(static_cast<std::uint32_t>(i));
+  }
+  // Clumps: the rank's own, its new ones, then the ghost clumps (still last).
+  const std::size_t owned_before = first_clump - C.ghosts;
+  std::vector<std::uint32_t> order, index(C.size(), kNoClump);
+  for (std::size_t c = 0; c < owned_before; ++c) order.push_back(static_cast<std::uint32_t>(c));
+  for (std::size_t c = first_clump; c < C.size(); ++c)
+    if (owner(C.pos[c].x()) == me) order.push_back(static_cast<std::uint32_t>(c));
+  for (std::size_t c = owned_before; c < first_clump; ++c)
+    order.push_back(static_cast<std::uint32_t>(c));
+  for (std::size_t k = 0; k < order.size(); ++k) index[order[k]] = static_cast<std::uint32_t>(k);
+  P.permute(keep);
+  C.permute(order);
+  if (clumped_)
+    for (auto& c : P.clump)
+      if (c != kNoClump) c = index[c];
+  for (std::size_t i = first_grain; i < P.size(); ++i) {
+    key_.push_back(cell_key(P.pos[i], P.id[i]));
+    if (P.id[i] >= index_of_id_.size()) index_of_id_.resize(P.id[i] + std::size_t{1}, -1);
+    index_of_id_[P.id[i]] = static_cast<std::int32_t>(i);
+  }
+  // Empty list rows for the kept new grains, so that the next build keeps the others' history.
+  auto& L = world.nlist;
+  for (auto* rows : {&L.start, &L.wall_start, &L.spar_start})
+    if (rows->size() == first_grain + 1) rows->resize(P.size() + 1, rows->back());
+  // The reach of the new grains (every rank saw them all: the same on every rank).
+  extent_ = std::max(extent_, offset > 0.0 ? offset + 0.5 * skin_ : 0.0);
+  ghost_width_ = std::max(ghost_width_, 2.0 * rmax + skin_ + extent_);
+  for (std::size_t q = 1; q + 2 < cuts_.size(); ++q)
+    if (cuts_[q + 1] - cuts_[q] < min_slab())
+      throw InputError("", 0, "",
+                       "the grains added make the ghost width " + std::to_string(ghost_width_) +
+                           " m: a slab of " + std::to_string(cuts_[q + 1] - cuts_[q]) +
+                           " m is too thin; use fewer ranks (docs/parallel.md)");
+  world.rebuild_needed = true;
+}
+
+template <int D>
 void SlabDomain<D>::after_integration(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   using Rot = typename Dim<D>::Rot;

@@ -57,6 +57,11 @@ class SlabDomain final : public DomainHooks<D> {
   double skin() const override { return skin_; }
   void before_build(World<D>& world) override;
   void grains_kept(World<D>& world, const std::vector<std::uint32_t>& keep) override;
+  // Grains (and clumps) were appended to the world by every rank alike (a stage's cloud,
+  // placed clear of the whole domain's grains): each rank keeps those whose centre (a
+  // member: its clump's) lies in its slab. The ghost width grows if the new grains need it;
+  // throws InputError when a slab is then too thin. All ranks call it.
+  void grains_added(World<D>& world, std::size_t first_grain, std::size_t first_clump);
   void after_integration(World<D>& world) override;
 
   DomainComm& comm() { return *comm_; }

@@ -54,7 +54,6 @@ Box<D> grains_box(const World<D>& w, bool radii = true) {
 
 template <int D>
 nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
-  if (opt.decompose) check_decomposable(s);
   // Rank 0 of a decomposed run writes the outputs and checkpoints; the others read.
   const bool root = !opt.decompose || comm::rank() == 0;
   World<D> w;

@@ -19,16 +19,6 @@ namespace {
 }
 }  // namespace
 
-void check_decomposable(const SceneSettings& s) {
-  auto refuse = [&](const std::string& key, const std::string& what) {
-    geodem::refuse(s, key, what);
-  };
-  for (std::size_t k = 0; k < s.stages.size(); ++k) {
-    const std::string key = "stages." + std::to_string(k);
-    if (!s.stages[k].clouds.empty()) refuse(key + ".clouds", "stages do not add grains");
-  }
-}
-
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
                                                const DomainCheckpoint<D>* resumed) {
@@ -118,6 +108,20 @@ void DomainWorldOnRank0<D>::swap() {
 }
 
 template <int D>
+Particles<D> domain_grains(const World<D>& world) {
+  Particles<D> out;  // (centres and radii)
+  auto& domain = dynamic_cast<SlabDomain<D>&>(*world.domain);
+  for (const auto& g : gather_grains(world, domain, false))
+    out.pos.push_back(g.pos), out.radius.push_back(g.radius);
+  return out;
+}
+
+template <int D>
+void keep_own_added_grains(World<D>& world, std::size_t first_grain, std::size_t first_clump) {
+  dynamic_cast<SlabDomain<D>&>(*world.domain).grains_added(world, first_grain, first_clump);
+}
+
+template <int D>
 std::vector<typename Dim<D>::Vec> domain_positions_by_id(const World<D>& world,
                                                          SlabDomain<D>& domain) {
   std::vector<typename Dim<D>::Vec> ref(
@@ -135,6 +139,10 @@ template Particles<2> grains_on_rank0<2>(const World<2>&, SlabDomain<2>&);
 template Particles<3> grains_on_rank0<3>(const World<3>&, SlabDomain<3>&);
 template class DomainWorldOnRank0<2>;
 template class DomainWorldOnRank0<3>;
+template Particles<2> domain_grains<2>(const World<2>&);
+template Particles<3> domain_grains<3>(const World<3>&);
+template void keep_own_added_grains<2>(World<2>&, std::size_t, std::size_t);
+template void keep_own_added_grains<3>(World<3>&, std::size_t, std::size_t);
 template std::vector<Dim<2>::Vec> domain_positions_by_id<2>(const World<2>&, SlabDomain<2>&);
 template std::vector<Dim<3>::Vec> domain_positions_by_id<3>(const World<3>&, SlabDomain<3>&);
 

@@ -13,10 +13,6 @@
 
 namespace geodem {
 
-// Throws InputError naming the key of what a decomposed scene cannot do yet (stages that add
-// grains).
-void check_decomposable(const SceneSettings& s);
-
 // Decomposes the world over the ranks of MPI_COMM_WORLD (`resumed`: a world loaded from a
 // decomposed run's checkpoint, SlabDomain::distribute); throws InputError for a periodic cell
 // (not distributed yet) and for slabs thinner than the ghost width.
@@ -51,6 +47,14 @@ class DomainWorldOnRank0 {
 // whose arrays alone are filled (id, position, radius, velocity, material).
 template <int D>
 Particles<D> grains_on_rank0(const World<D>& world, SlabDomain<D>& domain);
+
+// A stage's cloud in a decomposed world: every rank places it alike, clear of the whole
+// domain's grains (`domain_grains`: every rank's own grains, centres and radii, in id order, on
+// every rank), then keeps its own new grains (SlabDomain::grains_added).
+template <int D>
+Particles<D> domain_grains(const World<D>& world);
+template <int D>
+void keep_own_added_grains(World<D>& world, std::size_t first_grain, std::size_t first_clump);
 
 // Positions of every grain of the domain by id (measure/displacement.hpp), on every rank.
 template <int D>

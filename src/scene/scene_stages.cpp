@@ -4,6 +4,7 @@
 
 #include "controllers/plate_servo.hpp"
 #include "scene/build_scene.hpp"
+#include "scene/scene_domain.hpp"
 #include "world/world_editing.hpp"
 
 namespace geodem {
@@ -63,13 +64,17 @@ void start_stage(const SceneSettings& s, std::size_t k, World<D>& w, bool replay
                     ContactHistory::kKeep);
     }
     if (!st.clouds.empty()) {
-      std::vector<Sphere<D>> placed = spheres_of<D>(w.particles);
+      // (a decomposed world: clear of the whole domain's grains, every rank alike)
+      std::vector<Sphere<D>> placed = spheres_of<D>(w.domain ? domain_grains(w) : w.particles);
       Random rng(s.seed + 7919 * (k + 1));  // a stream of its own per stage
-      const std::size_t before = w.particles.size();
+      const std::size_t before = w.particles.size(), clumps_before = w.clumps.size();
       for (std::size_t c = 0; c < st.clouds.size(); ++c)
         add_cloud(s, st.clouds[c], "stages." + std::to_string(k) + ".clouds." + std::to_string(c),
                   w, rng, placed);
-      add_list_rows_for_new_grains(w, before);
+      if (w.domain)
+        keep_own_added_grains(w, before, clumps_before);
+      else
+        add_list_rows_for_new_grains(w, before);
     }
   }
   for (const auto& m : st.walls) {

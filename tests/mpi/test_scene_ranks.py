@@ -3,7 +3,8 @@
 K: a 3D settle (Hertz law with rolling resistance, VTK frames in pieces), a 2D biaxial test of
 bonded discs and pair clumps (servo-controlled walls over two stages, bonds breaking and clumps
 lying across rank boundaries), a pull-out of a sheet (a spar chain every rank holds whole,
-its loads summed over the ranks)
+its loads summed over the ranks), layers added by a stage (discs and clumps placed clear of the
+whole domain's grains, each rank keeping its own)
 and the staged example (a wall removed, grains excavated, a servo-loaded plate) on 1, 2 and 4
 ranks (oversubscribed) write the same history.csv (every column but the wall-clock time), the
 same particles.csv and the same results in summary.json. Killed (SIGTERM, or SIGKILL
@@ -89,7 +90,8 @@ def main() -> int:
         return subprocess.run(args, env=env, text=True, capture_output=True, timeout=600)
 
     with tempfile.TemporaryDirectory() as tmp:
-        for scenario in ("settle3d.toml", "biaxial2d.toml", "pullout2d.toml", STAGED):
+        for scenario in ("settle3d.toml", "biaxial2d.toml", "pullout2d.toml", "layers2d.toml",
+                         STAGED):
             ref = None
             for ranks in (1, 2, 4):
                 out = os.path.join(tmp, f"{os.path.basename(scenario)}.{ranks}")
@@ -127,6 +129,12 @@ def main() -> int:
                           and sheet["tension_last"] > 500.0,
                           f"{scenario} on {ranks} ranks: pulled with "
                           f"{sheet['tension_last']:.0f} N/m at the end")
+                elif scenario == "layers2d.toml":
+                    check(res["particles"] == 660 and res["clumps"] == 30 and
+                          res["bonds_created"] - res["bonds_broken"] > 0,
+                          f"{scenario} on {ranks} ranks: {res['particles']} grains, "
+                          f"{res['clumps']} clumps after the layer, "
+                          f"{res['bonds_created'] - res['bonds_broken']} bonds intact")
                 elif scenario == STAGED:
                     check([st["stop_reason"][:7] for st in res["stages"]] == ["at rest"] * 4 and
                           res["particles"] < 1500,
@@ -157,7 +165,8 @@ def main() -> int:
         # (and history rows after it, which the resumed run drops).
         for scenario, first, then, sig, at in (("settle3d.toml", 2, 4, signal.SIGTERM, 3000),
                                                ("biaxial2d.toml", 4, 1, signal.SIGKILL, 6000),
-                                               ("pullout2d.toml", 2, 4, signal.SIGKILL, 20000)):
+                                               ("pullout2d.toml", 2, 4, signal.SIGKILL, 20000),
+                                               ("layers2d.toml", 4, 2, signal.SIGKILL, 6000)):
             out = os.path.join(tmp, f"{scenario}.killed")
             args = [mpirun, "-n", str(first), geodem, "run", os.path.join(HERE, scenario),
                     "--out", out, "--quiet", "--set", "checkpoint.every_steps=1000"]

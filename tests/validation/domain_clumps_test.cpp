@@ -1,7 +1,8 @@
 // Clumps in a decomposed domain (domain/slab_clumps.cpp): a clump belongs to the rank of its
 // centre with all its members, ghost members bring a ghost clump that names their body, and a
 // clump whose centre crosses a cut moves with its members. Pair clumps and discs thrown
-// together in a box, with bonds and rolling friction or without, a band excavated halfway:
+// together in a box, with bonds and rolling friction or without, a band excavated halfway, a
+// layer of clumps and discs added by every rank alike (each keeps its own):
 // 1, 2 and 3 ranks end in the same bits, grains and clumps, and with grains in id order in the
 // bits of one process; a checkpoint of 3 ranks resumes on 2 and 1 with the uninterrupted bits.
 #include <gtest/gtest.h>
@@ -20,7 +21,7 @@ namespace geodem::test {
 namespace {
 
 constexpr double kR = 1e-3, kRho = 2600.0;
-constexpr int kSteps = 1200, kExcavation = 600;
+constexpr int kSteps = 1200, kExcavation = 600, kLayer = 700;
 
 // Pair clumps (two members of radius kR, lying along x, turned by up to 0.02 rad) and discs
 // in rows 0.1 kR apart in a box under gravity, each body given a random velocity (they
@@ -76,12 +77,41 @@ World<D> clump_packing(bool bonds, int sort_interval) {
   return w;
 }
 
+// A layer of pair clumps and discs added above the packing, by every rank alike (as a stage's
+// cloud): a decomposed world keeps each rank's own (SlabDomain::grains_added).
+template <int D>
+void add_layer(World<D>& w) {
+  const std::size_t grains = w.particles.size(), clumps = w.clumps.size();
+  ClumpTemplate<D> t;
+  builtin_clump_template("pair", t);
+  const ResolvedClump<D> pair = resolve_clump(t);
+  const int across = D == 2 ? 36 : 14, deep = D == 2 ? 1 : 6;
+  for (int i = 0; i < across; ++i)
+    for (int l = 0; l < deep; ++l) {
+      // (the second row below the lid: the box is twice the packing's rows high)
+      const double row = D == 2 ? 30.5 : 10.5;
+      const Vec<D> x = vec<D>(i + 0.5, row, l + 0.5).cwiseProduct(vec<D>(4.1, 2.1, 2.1) * kR);
+      if (i % 2 == 0) {
+        add_clump(w, pair, x, typename Dim<D>::Orient(Dim<D>::identity()), kR, kRho,
+                  std::uint16_t{0}, vec<D>(0.0, -0.5, 0.0));
+      } else {
+        w.particles.add(x, 1.2 * kR, kRho, 0, vec<D>(0.0, -0.5, 0.0));
+      }
+    }
+  if (w.domain)
+    dynamic_cast<SlabDomain<D>&>(*w.domain).grains_added(w, grains, clumps);
+  else
+    add_list_rows_for_new_grains(w, grains);
+}
+
 // Steps from..to: the floor slides from step 100, a band across the box is excavated (whole
-// clumps with any member in it) at kExcavation, the last step measures.
+// clumps with any member in it) at kExcavation, a layer falls in from above at kLayer, the
+// last step measures.
 template <int D>
 void advance(World<D>& w, int from, int to) {
   for (int k = from; k < to; ++k) {
     if (k == 100) w.walls[2].velocity = vec<D>(0.05, 0.0, 0.0);
+    if (k == kLayer) add_layer(w);
     if (k == kExcavation) {
       const auto& P = w.particles;
       remove_grains(w,
@@ -197,6 +227,7 @@ TYPED_TEST(DomainClumpsTest, RanksGiveTheBitsOfOneRank) {
     const auto reference = by_id(one, one[0].particles.next_id, ghosts);
     const auto reference_clumps = clumps_by_id(one);
     EXPECT_LT(n, one[0].particles.next_id) << "the excavation removed nothing";
+    EXPECT_EQ(one[0].particles.next_id, D == 2 ? 1014u : 966u) << "the layer was not added";
     EXPECT_GT(reference_clumps.size(), n / 3);
     if (bonds) {
       EXPECT_GT(one_sums[0].bonds, 0u);
