@@ -80,6 +80,7 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   // Positions by grain id at the start of the run or of the stage (the VTK displacements).
   std::vector<typename Dim<D>::Vec> reference;
   DomainCheckpoint<D> saved_domain;  // a decomposed run's keys and contact history
+  std::uint8_t was_decomposed = 0;   // the checkpoint resumed is a decomposed run's
   RunCheckpoints checkpoints("scene", D, s.resolved, opt.out_dir, s.checkpoint);
   Checkpoint resumed;
   StateReader runner_in(nullptr, 0);
@@ -88,8 +89,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     resumed = checkpoints.resume(s.file, {"time.duration", "time.steps", "stop"}, root);
     runner_in = StateReader(resumed.runner.data(), resumed.runner.size());
     runner_in(stage), runner_in(stage_started), runner_in(stage_t0), runner_in(stage_s0);
-    runner_in(stage_log), runner_in(reference);
-    if (opt.decompose) saved_domain.visit(runner_in);
+    runner_in(stage_log), runner_in(reference), runner_in(was_decomposed);
+    if (was_decomposed) saved_domain.visit(runner_in);
     // The saved world has the walls and servos of the stages begun: redo those first.
     for (std::uint64_t k = 0; staged && k < std::min(stage + stage_started, stage_count); ++k)
       start_stage(s, k, w, true);
@@ -99,9 +100,12 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     bonds_created = create_bonds(w, s.bond_gap_tolerance);
   }
   // Over the ranks of mpirun: each keeps its slab of the world it built (bonds included) or
-  // loaded from a checkpoint (on any number of ranks).
+  // loaded from a checkpoint (on any number of ranks). One process that resumes a decomposed
+  // run goes on as a domain of one rank (the same bits).
   const auto domain =
-      opt.decompose ? decompose_scene(s, w, opt.resume ? &saved_domain : nullptr) : nullptr;
+      opt.decompose || was_decomposed
+          ? decompose_scene(s, w, was_decomposed ? &saved_domain : nullptr, !opt.decompose)
+          : nullptr;
   saved_domain = DomainCheckpoint<D>{};
   auto positions = [&] { return domain ? domain_positions_by_id(w, *domain) : positions_by_id(w); };
 
@@ -180,7 +184,8 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
     if (!root) return;
     checkpoints.write_with(w.step, w.time, [&](StateWriter& runner, StateWriter& world) {
       runner(stage), runner(stage_started), runner(stage_t0), runner(stage_s0), runner(stage_log);
-      runner(reference);
+      const std::uint8_t decomposed = domain ? 1 : 0;
+      runner(reference), runner(decomposed);
       if (domain) saved_domain.visit(runner);
       runner(bonds_created), runner(elapsed()), runner(finished), runner(stop_reason);
       vtk.save(runner);

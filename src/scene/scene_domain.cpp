@@ -6,6 +6,7 @@
 
 #include "base/error.hpp"
 #include "distributed/mpi_domain_comm.hpp"
+#include "domain/local_comm.hpp"
 #include "measure/measurements.hpp"
 
 namespace geodem {
@@ -21,13 +22,15 @@ namespace {
 
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
-                                               const DomainCheckpoint<D>* resumed) {
+                                               const DomainCheckpoint<D>* resumed, bool local) {
   auto refuse = [&](const std::string& key, const std::string& what) {
     geodem::refuse(s, key, what);
   };
   if (world.cell.periodic) refuse("cell", "a periodic cell is not distributed");
   try {
-    return SlabDomain<D>::distribute(world, mpi_domain_comm(), resumed);
+    const std::shared_ptr<DomainComm> comm =
+        local ? std::make_shared<LocalDomainComm>() : mpi_domain_comm();
+    return SlabDomain<D>::distribute(world, comm, resumed);
   } catch (const InputError& e) {  // too many ranks for the grains: name the file
     throw InputError(s.file, 0, "mpirun -n", e.detail());
   }
@@ -132,9 +135,9 @@ std::vector<typename Dim<D>::Vec> domain_positions_by_id(const World<D>& world,
 }
 
 template std::shared_ptr<SlabDomain<2>> decompose_scene<2>(const SceneSettings&, World<2>&,
-                                                           const DomainCheckpoint<2>*);
+                                                           const DomainCheckpoint<2>*, bool);
 template std::shared_ptr<SlabDomain<3>> decompose_scene<3>(const SceneSettings&, World<3>&,
-                                                           const DomainCheckpoint<3>*);
+                                                           const DomainCheckpoint<3>*, bool);
 template Particles<2> grains_on_rank0<2>(const World<2>&, SlabDomain<2>&);
 template Particles<3> grains_on_rank0<3>(const World<3>&, SlabDomain<3>&);
 template class DomainWorldOnRank0<2>;

@@ -16,9 +16,11 @@ namespace geodem {
 // Decomposes the world over the ranks of MPI_COMM_WORLD (`resumed`: a world loaded from a
 // decomposed run's checkpoint, SlabDomain::distribute); throws InputError for a periodic cell
 // (not distributed yet) and for slabs thinner than the ghost width.
+// With `local`: a domain of one rank in this process, without MPI.
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
-                                               const DomainCheckpoint<D>* resumed = nullptr);
+                                               const DomainCheckpoint<D>* resumed = nullptr,
+                                               bool local = false);
 
 // For a checkpoint of a decomposed run (all ranks make one): while it lives, rank 0's world
 // holds the whole domain's grains in key order, its clumps in id order, an empty neighbour list
