@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "base/exact_sum.hpp"
 #include "base/parallel.hpp"
 
 namespace geodem {
@@ -166,11 +167,34 @@ const typename StepScratch<D>::ClumpMembers& clump_members(World<D>& world) {
 // Every loop runs clump by clump (or grain by grain), each writing only its own clump or
 // grain; a clump's members are summed in grain order. The results do not depend on the
 // number of threads.
+// A decomposed world's fabric correction (the one process's is in integrate_clumps): each
+// rank's own members, summed exactly, added over ranks. Every rank calls it on a measuring
+// step, with clumps or without (a collective).
+template <int D>
+void correct_fabric_over_ranks(World<D>& world) {
+  const auto& P = world.particles;
+  const auto& C = world.clumps;
+  std::vector<ExactSum> sums(D * D);
+  for (std::size_t i = 0; i < P.clump.size(); ++i) {
+    const std::uint32_t c = P.clump[i];
+    if (c >= C.owned()) continue;  // no clump, or a ghost clump's member
+    const typename Dim<D>::Vec arm = C.pos[c] - P.pos[i];
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b)
+        sums[static_cast<std::size_t>(a * D + b)].add(arm[a] * P.force[i][b]);
+  }
+  world.domain->sum(sums);
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < D; ++b)
+      world.stats.fabric_stress(a, b) += sums[static_cast<std::size_t>(a * D + b)].value();
+}
+
 template <int D>
 double integrate_clumps(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   auto& P = world.particles;
   auto& C = world.clumps;
+  if (world.domain && world.measure_this_step) correct_fabric_over_ranks(world);
   const std::size_t nc = C.owned();  // (a decomposed world's ghost clumps are not integrated)
   if (nc == 0) return 0.0;
   const bool par = world.threads > 1 && nc >= kParallelMin / 2;
@@ -195,8 +219,7 @@ double integrate_clumps(World<D>& world) {
   }
   // When the contact stage measured the fabric stress with member centres as the grains'
   // centres, the clump's own centre replaces them: add (X - x_m) (x) F_m for each member m
-  // (docs/physics.md, "Clumps"); one sum, in grain order. (A decomposed world adds it to the
-  // exact sums of the contact stage instead: contacts/contact_forces.cpp.)
+  // (docs/physics.md, "Clumps"); one sum, in grain order. (A decomposed world: above.)
   if (world.measure_this_step && !world.domain) {
     auto& fabric = world.stats.fabric_stress;
     for (std::size_t i = 0; i < P.size(); ++i) {

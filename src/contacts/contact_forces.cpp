@@ -344,20 +344,6 @@ void reduce_over_ranks(World<D>& world, std::vector<SlabTally<D>>& tallies, std:
   }
   for (std::size_t s = 0; s < slabs; ++s)
     if (tallies[s].overlap_offender >= 0) sums[flag].add(1.0);
-  // The fabric stress takes a clump's centre for its members' (integrate_clumps does this on
-  // one process): (X - x_m) (x) F_m over the rank's own members, whose forces are complete.
-  const auto& P = world.particles;
-  const auto& C = world.clumps;
-  if (measure && C.owned() > 0)
-    for (std::size_t i = 0; i < P.size(); ++i) {
-      const std::uint32_t c = P.clump[i];
-      if (c >= C.owned()) continue;
-      const typename Dim<D>::Vec arm = C.pos[c] - P.pos[i];
-      for (int a = 0; a < D; ++a)
-        for (int b = 0; b < D; ++b)
-          sums[nw * Tally::kPerWall + static_cast<std::size_t>(a * D + b)].add(arm[a] *
-                                                                               P.force[i][b]);
-    }
   world.domain->sum(sums);
   world.overlap_elsewhere = sums[flag].value() > 0.0;
   for (std::size_t w = 0; w < nw; ++w) {
