@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <barrier>
 #include <cmath>
+#include <string>
+#include <thread>
 #include <vector>
 
 #include "domain/slab_domain.hpp"
 #include "measure/measurements.hpp"
 #include "test_util.hpp"
+#include "world/world_state.hpp"
 
 namespace geodem::test {
 
@@ -185,6 +188,68 @@ void expect_same(const std::vector<Grain<D>>& a, const std::vector<Grain<D>>& b)
     ASSERT_TRUE(a[k].vel == b[k].vel) << "grain " << k;
     ASSERT_TRUE(a[k].angvel == b[k].angvel) << "grain " << k;
   }
+}
+
+// A checkpoint of a decomposed run as the scene runner writes it: `ranks` ranks each make the
+// world (make()), take their slab and advance it (run(world)); rank 0 then holds the whole
+// domain (SlabDomain::checkpoint) and saves it as world-state and domain bytes. The counts are
+// what the tests assert on.
+struct SavedDomain {
+  std::string world, domain;
+  std::size_t grains = 0, pairs = 0, spars = 0, clumps = 0, clump_ghosts = 0;
+};
+template <int D, class Make, class Run>
+SavedDomain checkpoint_on_ranks(int ranks, Make&& make, Run&& run) {
+  SavedDomain out;
+  Hub hub(ranks);
+  std::vector<std::thread> threads;
+  for (int r = 0; r < ranks; ++r)
+    threads.emplace_back([&, r] {
+      World<D> w = make();
+      auto d = SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r));
+      run(w);
+      DomainCheckpoint<D> saved;
+      Clumps<D> clumps;
+      Particles<D> all = d->checkpoint(w, saved, clumps);
+      const std::uint64_t broken = broken_bond_count(w);
+      if (r != 0) return;
+      out.grains = all.size(), out.pairs = saved.pairs.size(), out.spars = saved.spars.size();
+      out.clumps = clumps.size(), out.clump_ghosts = clumps.ghosts;
+      std::swap(w.particles, all);
+      std::swap(w.clumps, clumps);
+      NeighbourList<D> none;
+      w.nlist.swap_rows(none);
+      w.broken_bonds = broken;
+      StateWriter world_out, domain_out;
+      save_world_state(world_out, w);
+      saved.visit(domain_out);
+      out.world = world_out.bytes(), out.domain = domain_out.bytes();
+    });
+  for (auto& t : threads) t.join();
+  return out;
+}
+
+// The checkpoint resumed on `ranks` ranks: each makes the world, loads the saved state, takes
+// its slab as the saved domain says and goes on (run(world)); returns the ranks' worlds.
+template <int D, class Make, class Run>
+std::vector<World<D>> resume_on_ranks(int ranks, const SavedDomain& saved, Make&& make, Run&& run) {
+  Hub hub(ranks);
+  std::vector<World<D>> parts(static_cast<std::size_t>(ranks));
+  std::vector<std::thread> threads;
+  for (int r = 0; r < ranks; ++r)
+    threads.emplace_back([&, r] {
+      auto& w = parts[static_cast<std::size_t>(r)];
+      w = make();
+      StateReader world_in(saved.world.data(), saved.world.size());
+      load_world_state(world_in, w);
+      DomainCheckpoint<D> domain;
+      StateReader domain_in(saved.domain.data(), saved.domain.size());
+      domain.visit(domain_in);
+      SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r), &domain);
+      run(w);
+    });
+  for (auto& t : threads) t.join();
+  return parts;
 }
 
 }  // namespace geodem::test

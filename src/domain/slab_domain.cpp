@@ -9,6 +9,7 @@
 
 #include "base/error.hpp"
 #include "broadphase/list_history.hpp"
+#include "world/world_editing.hpp"
 
 namespace geodem {
 
@@ -382,9 +383,7 @@ void SlabDomain<D>::grains_added(World<D>& world, std::size_t first_grain,
     index_of_id_[P.id[i]] = static_cast<std::int32_t>(i);
   }
   // Empty list rows for the kept new grains, so that the next build keeps the others' history.
-  auto& L = world.nlist;
-  for (auto* rows : {&L.start, &L.wall_start, &L.spar_start})
-    if (rows->size() == first_grain + 1) rows->resize(P.size() + 1, rows->back());
+  add_list_rows_for_new_grains(world, first_grain);
   // The reach of the new grains (every rank saw them all: the same on every rank).
   extent_ = std::max(extent_, offset > 0.0 ? offset + 0.5 * skin_ : 0.0);
   ghost_width_ = std::max(ghost_width_, 2.0 * rmax + skin_ + extent_);

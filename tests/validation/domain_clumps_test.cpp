@@ -15,7 +15,6 @@
 #include "contacts/bonds.hpp"
 #include "domain_ranks.hpp"
 #include "world/world_editing.hpp"
-#include "world/world_state.hpp"
 
 namespace geodem::test {
 namespace {
@@ -279,52 +278,15 @@ TYPED_TEST(DomainClumpsTest, ACheckpointResumesOnOtherRankCounts) {
   std::size_t ghosts = 0;
   const auto reference = by_id(uninterrupted, ids, ghosts);
   const auto reference_clumps = clumps_by_id(uninterrupted);
-  std::string world_bytes, domain_bytes;
-  {
-    Hub hub(3);
-    std::vector<std::thread> threads;
-    for (int r = 0; r < 3; ++r)
-      threads.emplace_back([&, r] {
-        World<D> w = clump_packing<D>(true, 3);
-        auto d = SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r));
-        advance(w, 0, kCut);
-        DomainCheckpoint<D> saved;
-        Clumps<D> clumps;
-        Particles<D> all = d->checkpoint(w, saved, clumps);
-        const std::uint64_t broken = broken_bond_count(w);
-        if (r != 0) return;
-        EXPECT_GT(clumps.size(), 0u);
-        EXPECT_EQ(clumps.ghosts, 0u);
-        std::swap(w.particles, all);
-        std::swap(w.clumps, clumps);
-        NeighbourList<D> none;
-        w.nlist.swap_rows(none);
-        w.broken_bonds = broken;
-        StateWriter world_out, domain_out;
-        save_world_state(world_out, w);
-        saved.visit(domain_out);
-        world_bytes = world_out.bytes(), domain_bytes = domain_out.bytes();
-      });
-    for (auto& t : threads) t.join();
-  }
+  const SavedDomain saved = checkpoint_on_ranks<D>(
+      3, [] { return clump_packing<D>(true, 3); }, [](World<D>& w) { advance(w, 0, kCut); });
+  EXPECT_GT(saved.clumps, 0u);
+  EXPECT_EQ(saved.clump_ghosts, 0u);
   for (int ranks : {2, 1}) {
     SCOPED_TRACE(::testing::Message() << "resumed on " << ranks << " ranks");
-    Hub hub(ranks);
-    std::vector<World<D>> parts(static_cast<std::size_t>(ranks));
-    std::vector<std::thread> threads;
-    for (int r = 0; r < ranks; ++r)
-      threads.emplace_back([&, r] {
-        auto& w = parts[static_cast<std::size_t>(r)];
-        w = clump_packing<D>(true, 3);
-        StateReader world_in(world_bytes.data(), world_bytes.size());
-        load_world_state(world_in, w);
-        DomainCheckpoint<D> saved;
-        StateReader domain_in(domain_bytes.data(), domain_bytes.size());
-        saved.visit(domain_in);
-        SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r), &saved);
-        advance(w, kCut, kSteps);
-      });
-    for (auto& t : threads) t.join();
+    const auto parts = resume_on_ranks<D>(
+        ranks, saved, [] { return clump_packing<D>(true, 3); },
+        [](World<D>& w) { advance(w, kCut, kSteps); });
     expect_same<D>(by_id(parts, ids, ghosts), reference);
     expect_same_clumps<D>(clumps_by_id(parts), reference_clumps);
   }

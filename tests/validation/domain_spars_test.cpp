@@ -12,7 +12,6 @@
 
 #include "domain_ranks.hpp"
 #include "pressed_packing.hpp"
-#include "world/world_state.hpp"
 
 namespace geodem::test {
 namespace {
@@ -134,50 +133,14 @@ TYPED_TEST(DomainSparsTest, ACheckpointResumesOnOtherRankCounts) {
   const std::size_t ids = uninterrupted[0].particles.next_id;
   std::size_t ghosts = 0;
   const auto reference = by_id(uninterrupted, ids, ghosts);
-  std::string world_bytes, domain_bytes;
-  {
-    Hub hub(3);
-    std::vector<std::thread> threads;
-    for (int r = 0; r < 3; ++r)
-      threads.emplace_back([&, r] {
-        World<D> w = packing_with_chain<D>();
-        auto d = SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r));
-        advance(w, 0, kCut);
-        DomainCheckpoint<D> saved;
-        Clumps<D> clumps;
-        Particles<D> all = d->checkpoint(w, saved, clumps);
-        const std::uint64_t broken = broken_bond_count(w);
-        if (r != 0) return;
-        EXPECT_FALSE(saved.spars.empty());
-        std::swap(w.particles, all);
-        NeighbourList<D> none;
-        w.nlist.swap_rows(none);
-        w.broken_bonds = broken;
-        StateWriter world_out, domain_out;
-        save_world_state(world_out, w);
-        saved.visit(domain_out);
-        world_bytes = world_out.bytes(), domain_bytes = domain_out.bytes();
-      });
-    for (auto& t : threads) t.join();
-  }
+  const SavedDomain saved = checkpoint_on_ranks<D>(
+      3, [] { return packing_with_chain<D>(); }, [](World<D>& w) { advance(w, 0, kCut); });
+  EXPECT_GT(saved.spars, 0u);
   for (int ranks : {2, 1}) {
     SCOPED_TRACE(::testing::Message() << "resumed on " << ranks << " ranks");
-    Hub hub(ranks);
-    std::vector<World<D>> parts(static_cast<std::size_t>(ranks));
-    std::vector<std::thread> threads;
-    for (int r = 0; r < ranks; ++r)
-      threads.emplace_back([&, r] {
-        auto& w = parts[static_cast<std::size_t>(r)];
-        w = packing_with_chain<D>();
-        StateReader world_in(world_bytes.data(), world_bytes.size());
-        load_world_state(world_in, w);
-        DomainCheckpoint<D> saved;
-        StateReader domain_in(domain_bytes.data(), domain_bytes.size());
-        saved.visit(domain_in);
-        SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r), &saved);
-        advance(w, kCut, kSteps);
-      });
-    for (auto& t : threads) t.join();
+    const auto parts = resume_on_ranks<D>(
+        ranks, saved, [] { return packing_with_chain<D>(); },
+        [](World<D>& w) { advance(w, kCut, kSteps); });
     expect_same<D>(by_id(parts, ids, ghosts), reference);
     for (const auto& w : parts) expect_same_nodes<D>(w, uninterrupted[0]);
   }
