@@ -16,6 +16,7 @@
 #include <fstream>
 #include <string>
 
+#include "base/parallel.hpp"
 #include "distributed/mpi_domain_comm.hpp"
 #include "domain/slab_domain.hpp"
 #include "io/toml_reader.hpp"
@@ -81,7 +82,7 @@ int run(const SceneSettings& s, long steps, bool domain, int rebalance_every) {
   World<D> w;
   build_world<D>(s, w);
   if (!s.start_checkpoint.empty()) start_from_checkpoint(s, w);
-  w.threads = 1;
+  w.threads = default_threads();  // GEODEM_THREADS, else OMP_NUM_THREADS, else 1
   int rank = 0, ranks = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
@@ -115,10 +116,18 @@ int run(const SceneSettings& s, long steps, bool domain, int rebalance_every) {
       1024.0 * static_cast<double>(peak) / static_cast<double>(owned));
   std::fflush(stdout);
   MPI_Barrier(MPI_COMM_WORLD);
+  if (rank == 0) {
+    std::printf("rank 0 stages (s, whole run):");
+    for (int k = 0; k < static_cast<int>(Stage::kCount); ++k)
+      std::printf(" %s %.3f", stage_name(static_cast<Stage>(k)), w.stage_seconds[k]);
+    std::printf("\n");
+  }
   if (rank == 0)
-    std::printf("%s, %d rank(s): %ld grains, %ld steps in %.3f s: %.3f M particle-steps/s\n",
-                domain ? "domain" : "one process", ranks, total, steps, seconds,
-                static_cast<double>(total) * static_cast<double>(steps) / seconds * 1e-6);
+    std::printf(
+        "%s, %d rank(s) of %d thread(s): %ld grains, %ld steps in %.3f s: %.3f M "
+        "particle-steps/s\n",
+        domain ? "domain" : "one process", ranks, w.threads, total, steps, seconds,
+        static_cast<double>(total) * static_cast<double>(steps) / seconds * 1e-6);
   return 0;
 }
 

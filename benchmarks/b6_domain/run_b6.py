@@ -7,8 +7,11 @@ that dense bed on one process and decomposed over 1, 2 and 4 ranks
 (geodem_domain_bench), one run after the other. Prints each rank's grains, ghosts, ghost
 update bytes, message time and resident memory, and the whole run's rate.
 
-usage: run_b6.py [--n 20000 200000] [--steps 2000] [--ranks 1 2 4] [--rebalance B] [--work DIR]
-                 [--build DIR]
+usage: run_b6.py [--n 20000 200000] [--steps 2000] [--ranks 1 2 4] [--threads 1] [--rebalance B]
+                 [--work DIR] [--build DIR]
+
+--threads T: T threads in the one process and in each rank (ranks x threads should not exceed
+the cores).
 """
 import argparse
 import math
@@ -44,6 +47,7 @@ def main(argv):
     ap.add_argument("--n", type=int, nargs="+", default=[20000, 200000])
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2, 4])
+    ap.add_argument("--threads", type=int, default=1, help="threads of each process")
     ap.add_argument("--rebalance", type=int, default=0,
                     help="move the cuts every this many list builds (0: never)")
     ap.add_argument("--work", default=str(HERE.parent / "results" / "b6"))
@@ -52,7 +56,8 @@ def main(argv):
     build = Path(a.build)
     geodem, bench = build / "geodem", build / "benchmarks" / "b6_domain" / "geodem_domain_bench"
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1")
+               OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1",
+               GEODEM_THREADS=str(a.threads))
     for n in a.n:
         work = Path(a.work) / f"n{n}"
         work.mkdir(parents=True, exist_ok=True)

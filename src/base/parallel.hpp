@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace geodem {
@@ -53,25 +54,58 @@ T ordered_sum(std::size_t n, int threads, const T& zero, Term&& term) {
 // alone, never on the thread count: long enough that few pairs cross slabs and that a
 // slab's work (about 100 us for 1,024 grains) dwarfs the cost of handing it to a thread,
 // short enough for 32 slabs to share among threads.
-// A caller may fix the length instead (`fixed` > 0: World::fixed_slab).
+// A caller may fix the length instead (`fixed` > 0), or give the slabs' starts (SlabPlan).
 constexpr std::size_t kMinSlab = 1024;
 inline std::size_t slab_length(std::size_t n, std::size_t fixed = 0) {
   return fixed > 0 ? fixed : std::max<std::size_t>(kMinSlab, (n + 31) / 32);
 }
-inline std::size_t slab_count(std::size_t n, std::size_t fixed = 0) {
-  return (n + slab_length(n, fixed) - 1) / slab_length(n, fixed);
-}
 
-// Runs body(slab, first, last) for every slab of n grains, side by side.
+// How a stage cuts n grains into slabs: ranges of one length (the last one shorter), or
+// ranges that begin at given indices. A decomposed domain gives starts where its grains'
+// keys change block (domain/slab_domain.hpp): a grain's slab, and so the order of its sums,
+// is then the same on every rank that holds it, whatever the rank's other grains.
+struct SlabPlan {
+  std::size_t n = 0;
+  std::size_t len = kMinSlab;             // uniform slabs (starts == nullptr)
+  const std::uint32_t* starts = nullptr;  // else starts[0] = 0 < ... < starts[count] = n
+  std::size_t count = 0;
+
+  static SlabPlan uniform(std::size_t n, std::size_t fixed = 0) {
+    SlabPlan p;
+    p.n = n;
+    p.len = slab_length(n, fixed);
+    p.count = (n + p.len - 1) / p.len;
+    return p;
+  }
+  // `starts` holds count + 1 entries, the last n.
+  static SlabPlan given(std::size_t n, const std::vector<std::uint32_t>& starts) {
+    SlabPlan p;
+    p.n = n;
+    p.starts = starts.data();
+    p.count = starts.size() - 1;
+    return p;
+  }
+  std::size_t first(std::size_t s) const { return starts ? starts[s] : s * len; }
+  std::size_t last(std::size_t s) const {
+    return starts ? starts[s + 1] : std::min(n, (s + 1) * len);
+  }
+  // The slab of grain i < n.
+  std::size_t slab_of(std::size_t i) const {
+    if (!starts) return i / len;
+    return static_cast<std::size_t>(std::upper_bound(starts + 1, starts + count + 1, i) -
+                                    (starts + 1));
+  }
+};
+
+// Runs body(slab, first, last) for every slab of the plan, side by side.
 template <typename Body>
-void for_slabs(std::size_t n, int threads, Body&& body, std::size_t fixed = 0) {
-  const std::size_t len = slab_length(n, fixed);
-  const auto ns = static_cast<std::ptrdiff_t>(slab_count(n, fixed));
-  const bool par = threads > 1 && ns >= 2 && n >= kParallelMin;
+void for_slabs(const SlabPlan& plan, int threads, Body&& body) {
+  const auto ns = static_cast<std::ptrdiff_t>(plan.count);
+  const bool par = threads > 1 && ns >= 2 && plan.n >= kParallelMin;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (par)
   for (std::ptrdiff_t s = 0; s < ns; ++s) {
-    const std::size_t first = static_cast<std::size_t>(s) * len;
-    body(static_cast<std::size_t>(s), first, std::min(n, first + len));
+    const auto slab = static_cast<std::size_t>(s);
+    body(slab, plan.first(slab), plan.last(slab));
   }
 }
 
@@ -86,10 +120,10 @@ template <typename Entry>  // an Entry has a field `body`
 class SlabCrossings {
  public:
   // Buckets for n grains; their contents are left to the slabs' tasks to clear.
-  void prepare(std::size_t n, std::size_t fixed = 0) {
-    n_ = n;
-    len_ = slab_length(n, fixed);
-    slabs_ = slab_count(n, fixed);
+  void prepare(const SlabPlan& plan) {
+    plan_ = plan;
+    n_ = plan.n;
+    slabs_ = plan.count;
     if (buckets_.size() < slabs_ * (slabs_ + 1)) buckets_.resize(slabs_ * (slabs_ + 1));
   }
   // Where the task of slab s writes: emptied here, filled by push().
@@ -98,24 +132,28 @@ class SlabCrossings {
     void push(const Entry& e) {
       // Most crossing pairs reach the next slab: spared the division.
       const std::size_t b = e.body;
-      const std::size_t target = b >= n_ ? slabs_ : b - next_first_ < len_ ? next_ : b / len_;
+      const std::size_t target = b >= plan_->n                 ? slabs_
+                                 : b - next_first_ < next_len_ ? next_
+                                                               : plan_->slab_of(b);
       bucket_[target].push_back(e);
     }
 
    private:
     friend class SlabCrossings;
     std::vector<Entry>* bucket_;
-    std::size_t n_, len_, slabs_;
-    std::size_t next_, next_first_;  // the slab after the writer's, and its first body
+    const SlabPlan* plan_;
+    std::size_t slabs_;
+    std::size_t next_, next_first_, next_len_;  // the slab after the writer's, its first body
   };
   Writer slab(std::size_t s) {
     Writer w;
     w.bucket_ = buckets_.data() + s * (slabs_ + 1);
     for (std::size_t t = 0; t <= slabs_; ++t) w.bucket_[t].clear();
-    w.n_ = n_, w.len_ = len_, w.slabs_ = slabs_;
-    // For the last slab next_first_ >= n_: no grain maps there, bodies from n_ up go to slabs_.
+    w.plan_ = &plan_, w.slabs_ = slabs_;
+    // For the last slab there is no next one: bodies from n up go to slabs_.
     w.next_ = s + 1;
-    w.next_first_ = (s + 1) * len_;
+    w.next_first_ = s + 1 < slabs_ ? plan_.first(s + 1) : n_;
+    w.next_len_ = s + 1 < slabs_ ? plan_.last(s + 1) - w.next_first_ : 0;
     return w;
   }
   // Calls add(entry) for every entry, target slabs side by side (the bodies beyond the
@@ -138,7 +176,8 @@ class SlabCrossings {
 
  private:
   std::vector<std::vector<Entry>> buckets_;  // source-major: [s * (slabs + 1) + target]
-  std::size_t n_ = 0, len_ = kMinSlab, slabs_ = 0;
+  SlabPlan plan_;                            // its starts, if any, must outlive the writers
+  std::size_t n_ = 0, slabs_ = 0;
 };
 
 // Threads of a run when none is asked for: GEODEM_THREADS, else OMP_NUM_THREADS, else 1

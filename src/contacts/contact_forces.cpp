@@ -199,35 +199,31 @@ template <int D>
 void cell_fabric_of_grains(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   const auto& P = world.particles;
   SlabTally<D>* tally = tallies.data();
-  for_slabs(
-      P.size(), world.threads,
-      [&](std::size_t s, std::size_t first, std::size_t last) {
-        typename Dim<D>::Tensor sum = Dim<D>::Tensor::Zero();
-        for (std::size_t i = first; i < last; ++i) sum += P.pos[i] * P.force[i].transpose();
-        tally[s].cell_fabric += sum;
-      },
-      world.fixed_slab(P.size()));
+  for_slabs(world.slab_plan(P.size()), world.threads,
+            [&](std::size_t s, std::size_t first, std::size_t last) {
+              typename Dim<D>::Tensor sum = Dim<D>::Tensor::Zero();
+              for (std::size_t i = first; i < last; ++i) sum += P.pos[i] * P.force[i].transpose();
+              tally[s].cell_fabric += sum;
+            });
 }
 
 template <int D, bool Measure, bool Extras, bool Periodic>
 void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   SlabTally<D>* tally = tallies.data();
   auto& crossing = world.slab_crossing;
-  crossing.prepare(world.particles.size(), world.fixed_slab(world.particles.size()));
+  const SlabPlan plan = world.slab_plan(world.particles.size());
+  crossing.prepare(plan);
   // Contacts without extras run in batches unless the scalar loop is asked for.
   const bool batched = contact_path() != ContactPath::kScalar && batch_kernel_has(world.pair_laws);
-  for_slabs(
-      world.particles.size(), world.threads,
-      [&](std::size_t s, std::size_t first, std::size_t last) {
-        if constexpr (!Extras) {
-          if (batched) {
-            batched_pair_rows<D, Measure, Periodic>(world, first, last, tally[s], crossing.slab(s));
-            return;
-          }
-        }
-        pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally[s], crossing.slab(s));
-      },
-      world.fixed_slab(world.particles.size()));
+  for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
+    if constexpr (!Extras) {
+      if (batched) {
+        batched_pair_rows<D, Measure, Periodic>(world, first, last, tally[s], crossing.slab(s));
+        return;
+      }
+    }
+    pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally[s], crossing.slab(s));
+  });
   // The crossing forces, each grain's in slab order.
   auto& P = world.particles;
   crossing.apply(world.threads, [&P](const SlabCrossing<D>& c) {
@@ -316,12 +312,10 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
     }
   };
   SlabTally<D>* tally = tallies.data();
-  for_slabs(
-      world.particles.size(), world.threads,
-      [&](std::size_t s, std::size_t first, std::size_t last) {
-        for (std::size_t i = first; i < last; ++i) row(i, tally[s]);
-      },
-      world.fixed_slab(world.particles.size()));
+  for_slabs(world.slab_plan(world.particles.size()), world.threads,
+            [&](std::size_t s, std::size_t first, std::size_t last) {
+              for (std::size_t i = first; i < last; ++i) row(i, tally[s]);
+            });
 }
 
 }  // namespace
@@ -367,8 +361,7 @@ void compute_contact_forces(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   // Per-slab sums, kept between steps so that the step allocates nothing.
   static thread_local std::vector<SlabTally<D>> tallies;
-  const std::size_t slabs =
-      slab_count(world.particles.size(), world.fixed_slab(world.particles.size()));
+  const std::size_t slabs = world.slab_plan(world.particles.size()).count;
   const std::size_t nw = world.walls.size();
   if (tallies.size() < slabs) tallies.resize(slabs);
   for (std::size_t s = 0; s < slabs; ++s) {

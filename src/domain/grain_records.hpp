@@ -135,13 +135,15 @@ struct DomainCheckpoint {
   // The skin, ghost width (the keys' cell size) and clump reach of the run: taken again as
   // they were, not from the grains now (a run that removed grains would find others).
   double skin = 0.0, ghost_width = 0.0, extent = 0.0;
+  // The keys' block that starts a force slab (SlabDomain: 0, one slab a rank).
+  std::uint64_t key_block = 0;
   std::vector<std::uint64_t> keys;
   std::vector<PairRecord<D>> pairs;
   std::vector<WallRecord<D>> walls;
   std::vector<SparRecord<D>> spars;
   template <class Archive>
   void visit(Archive& a) {
-    a(grid_lo), a(grid_dims), a(sort_every), a(skin), a(ghost_width), a(extent);
+    a(grid_lo), a(grid_dims), a(sort_every), a(skin), a(ghost_width), a(extent), a(key_block);
     a(keys), a(pairs), a(walls), a(spars);
   }
 };

@@ -89,6 +89,7 @@ Particles<D> SlabDomain<D>::checkpoint(const World<D>& world, DomainCheckpoint<D
   }
   saved.grid_lo = grid_lo_, saved.grid_dims = grid_dims_, saved.sort_every = sort_every_;
   saved.skin = skin_, saved.ghost_width = ghost_width_, saved.extent = extent_;
+  saved.key_block = key_block_;
   return out;
 }
 

@@ -83,7 +83,7 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
              " m (the ghost width, 2 x largest radius + skin, and twice a clump's reach): use "
              "fewer ranks");
   // The keys' grid: the grains' bounding box now, cells a ghost width across (grains that
-  // leave the box later take the edge cells).
+  // leave the box later take the edge cells until the keys are retaken, with a new grid).
   d->sort_every_ = world.sort_interval;
   if (resumed) {
     if (resumed->keys.size() != n)
@@ -94,11 +94,10 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   } else if (n > 0) {
     typename Dim<D>::Vec lo = P.pos[0], hi = P.pos[0];
     for (std::size_t i = 0; i < n; ++i) lo = lo.cwiseMin(P.pos[i]), hi = hi.cwiseMax(P.pos[i]);
-    d->grid_lo_ = lo;
-    for (int k = 0; k < D; ++k)
-      d->grid_dims_[static_cast<std::size_t>(k)] =
-          static_cast<std::uint64_t>(std::floor((hi[k] - lo[k]) / d->ghost_width_)) + 1;
+    d->set_grid(lo, hi, n, world.one_slab);
   }
+  if (resumed) d->key_block_ = resumed->key_block;
+  world.one_slab = d->key_block_ == 0;
   if (resumed) {
     d->pairs_ = resumed->pairs, d->walls_ = resumed->walls, d->spars_ = resumed->spars;
   } else {
@@ -124,7 +123,7 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   for (std::size_t k = 0; k < mine.size(); ++k) d->key_[k] = keys[mine[k]];
   NeighbourList<D> none;
   world.nlist.swap_rows(none);
-  world.one_slab = true;
+  d->set_slab_starts(world);
   world.sort_interval = 0;  // the domain orders the grains (by key)
   world.rebuild_needed = true;
   // The rank's work is counted from here (a world from a checkpoint brings its stage times).
@@ -165,6 +164,40 @@ std::uint64_t SlabDomain<D>::cell_key(const typename Dim<D>::Vec& x, std::uint32
     cell = cell * dims + ck;  // x fastest, as the neighbour search's cells
   }
   return (cell << 32) | id;
+}
+
+template <int D>
+void SlabDomain<D>::set_grid(const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
+                             std::uint64_t grains, bool one_slab) {
+  grid_lo_ = lo;
+  std::uint64_t cells = 1;
+  for (int k = 0; k < D; ++k) {
+    auto& dims = grid_dims_[static_cast<std::size_t>(k)];
+    dims = static_cast<std::uint64_t>(std::floor((hi[k] - lo[k]) / ghost_width_)) + 1;
+    cells *= dims;
+  }
+  // Force slabs of blocks of keys holding about max(2,048, N / 512) grains (the same blocks on
+  // every rank: a slab's grains are then the same whatever the ranks hold).
+  if (one_slab || grains == 0) {
+    key_block_ = 0;
+    return;
+  }
+  const std::uint64_t target = std::max<std::uint64_t>(2048, grains / 512);
+  key_block_ = sort_every_ > 0 ? std::max<std::uint64_t>(1, target * cells / grains) : target;
+}
+
+template <int D>
+void SlabDomain<D>::set_slab_starts(World<D>& world) const {
+  auto& starts = world.slab_starts;
+  starts.clear();
+  if (key_block_ == 0) return;
+  auto block = [&](std::uint64_t key) {
+    return (sort_every_ > 0 ? key >> 32 : key & 0xffffffffu) / key_block_;
+  };
+  starts.push_back(0);
+  for (std::size_t i = 1; i < key_.size(); ++i)
+    if (block(key_[i]) != block(key_[i - 1])) starts.push_back(static_cast<std::uint32_t>(i));
+  starts.push_back(static_cast<std::uint32_t>(key_.size()));
 }
 
 template <int D>
@@ -331,6 +364,7 @@ void SlabDomain<D>::grains_kept(World<D>& world, const std::vector<std::uint32_t
   std::vector<std::uint64_t> kept(keep.size());
   for (std::size_t k = 0; k < keep.size(); ++k) kept[k] = key_[keep[k]];
   key_.swap(kept);
+  set_slab_starts(world);
   std::fill(index_of_id_.begin(), index_of_id_.end(), -1);
   const auto& P = world.particles;
   for (std::size_t i = 0; i < P.size(); ++i)
@@ -382,6 +416,7 @@ void SlabDomain<D>::grains_added(World<D>& world, std::size_t first_grain,
     if (P.id[i] >= index_of_id_.size()) index_of_id_.resize(P.id[i] + std::size_t{1}, -1);
     index_of_id_[P.id[i]] = static_cast<std::int32_t>(i);
   }
+  set_slab_starts(world);  // the next build puts the new grains in key order
   // Empty list rows for the kept new grains, so that the next build keeps the others' history.
   add_list_rows_for_new_grains(world, first_grain);
   // The reach of the new grains (every rank saw them all: the same on every rank).

@@ -5,11 +5,13 @@
 // its boundaries: every contact of an owned grain is then in the rank's list. A contact
 // between an owned grain and a ghost is computed on both ranks, from the same bits, so that
 // no force is sent back; ghosts pair with owned grains only and have no walls. On every rank
-// the grains are ordered by id and the force stage runs as one slab, so each grain sums its
-// contacts in the order of its partners' keys: the same bits for any number of ranks. A key
-// is the grain's cell in a grid fixed for the whole domain, taken by its owner every
-// sort_interval list builds (as one process renumbers grains in cell order), then its id;
-// with sort_interval = 0 it is the id alone.
+// the grains are ordered by key, and the force stage's slabs (base/parallel.hpp) begin where
+// the keys enter a new block of the domain's key space, so each grain sums its contacts in an
+// order its partners' keys alone decide: the same bits for any number of ranks, and for any
+// number of threads in each. A key is the grain's cell in a grid fixed for the whole domain,
+// taken by its owner every sort_interval list builds (as one process renumbers grains in cell
+// order), then its id; with sort_interval = 0 it is the id alone. A world distributed with
+// one_slab set keeps one slab a rank (its bits are those of one process with one slab).
 //
 // At each neighbour-list build (all ranks together) grains that left their slab move to the
 // neighbour with the history of their contacts, the ghosts are renewed, and the list's old
@@ -88,6 +90,13 @@ class SlabDomain final : public DomainHooks<D> {
   // comm_->exchange, its time (waiting included) counted in comm_seconds_.
   void exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower, Bytes& from_upper);
   std::uint64_t cell_key(const typename Dim<D>::Vec& x, std::uint32_t id) const;
+  // The keys' grid over the box [lo, hi] of the domain's `grains`, and the block of keys of a
+  // force slab (0 with `one_slab`).
+  void set_grid(const typename Dim<D>::Vec& lo, const typename Dim<D>::Vec& hi,
+                std::uint64_t grains, bool one_slab);
+  // The force slabs' starts (World::slab_starts) from the grains' keys: a slab for each run of
+  // keys in one block.
+  void set_slab_starts(World<D>& world) const;
   std::int64_t local_index(std::uint32_t id) const;
   // Where a grain belongs: its centre, or a member's clump's centre (x).
   double home_x(const World<D>& world, std::size_t i) const;
@@ -109,6 +118,8 @@ class SlabDomain final : public DomainHooks<D> {
   typename Dim<D>::Vec grid_lo_ = Dim<D>::Vec::Zero();
   std::array<std::uint64_t, 3> grid_dims_{1, 1, 1};
   int sort_every_ = 0;
+  // Keys per block of a force slab: cells of the grid (sort_every_ > 0) or ids; 0: one slab.
+  std::uint64_t key_block_ = 0;
   std::vector<std::uint64_t> key_;         // per local grain
   std::vector<std::int32_t> index_of_id_;  // local index of each grain id held, else -1
   // A build's scratch (given back at its end, but for the small buffers): the new grains'

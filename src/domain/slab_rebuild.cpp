@@ -7,6 +7,7 @@
 // one-process build renumbers them (broadphase/neighbour_search.cpp); only the grains that
 // change ranks travel as records with their history.
 #include <algorithm>
+#include <limits>
 #include <string>
 #include <tuple>
 
@@ -39,10 +40,26 @@ void SlabDomain<D>::before_build(World<D>& world) {
     builds_since_rebalance_ = 1;
   }
   // Every sort_interval builds (counted alike on every rank) each owner retakes its grains'
-  // keys from their cells now: neighbours then sit close in memory, as on one process.
-  if (sort_every_ > 0 && world.nlist.builds % static_cast<std::uint64_t>(sort_every_) == 0)
+  // keys from their cells now: neighbours then sit close in memory, as on one process. The
+  // grid is taken anew over the whole domain's grains (a deposit that settled to the bottom
+  // of its first box would otherwise crowd into a few blocks of keys, and so a few slabs).
+  if (sort_every_ > 0 && world.nlist.builds % static_cast<std::uint64_t>(sort_every_) == 0) {
+    using Vec = typename Dim<D>::Vec;
+    const double inf = std::numeric_limits<double>::infinity();
+    Vec lo = Vec::Constant(inf), hi = Vec::Constant(-inf);
+    std::vector<ExactSum> count(1);
+    for (std::size_t i = 0; i < n_old; ++i)
+      if (!(P.flags[i] & kGhost)) {
+        lo = lo.cwiseMin(P.pos[i]), hi = hi.cwiseMax(P.pos[i]);
+        count[0].add(1.0);
+      }
+    for (int k = 0; k < D; ++k) lo[k] = comm_->min(lo[k]), hi[k] = comm_->max(hi[k]);
+    comm_->sum(count);
+    const auto grains = static_cast<std::uint64_t>(count[0].value());
+    if (grains > 0) set_grid(lo, hi, grains, world.one_slab);
     for (std::size_t i = 0; i < n_old; ++i)
       if (!(P.flags[i] & kGhost)) key_[i] = cell_key(P.pos[i], P.id[i]);
+  }
   // The new grains are sources: a grain held here (its index) or a record that arrived
   // (n_old + its place in arrived_), each with its key.
   order_.clear(), arrived_.clear(), ghost_clumps_.clear();
@@ -202,6 +219,7 @@ void SlabDomain<D>::before_build(World<D>& world) {
   if (clumped_) replace_clumps(P, world.clumps, staying);
   key_.resize(n);
   for (std::size_t k = 0; k < n; ++k) key_[k] = order_[k].first;
+  set_slab_starts(world);
   for (auto* list : {&send_lower_, &send_upper_, &recv_lower_, &recv_upper_})
     for (auto& v : *list) v = new_index_[v];
   renumber_rows(world, old_to_new);

@@ -115,74 +115,70 @@ double critical_timestep(const World<D>& world) {
   // body outside the slab (a grain of a later slab, a clump) is added afterwards, in slab
   // order, so that the sums, and dt, do not depend on the thread count.
   auto& crossing = world.slab_crossing;
-  crossing.prepare(have_list ? n : 0, world.fixed_slab(n));
-  for_slabs(
-      have_list ? n : 0, world.threads,
-      [&](std::size_t s, std::size_t first, std::size_t last) {
-        auto out = crossing.slab(s);
-        auto add = [&](std::size_t b, const Vec& nrm, double kn, double kt, const Vec& l, double kr,
-                       double ktw) {
-          const SlabCrossing<D> c = DiagonalStiffness<D>::share(b, nrm, kn, kt, l, kr, ktw);
-          if (b >= first && b < last) {
-            K.add(c);
-          } else {
-            out.push(c);
-          }
-        };
-        for (std::size_t i = first; i < last; ++i) {
-          for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
-            const std::uint32_t j = L.other[k];
-            const double rs = P.radius[i] + P.radius[j];
-            const Vec d = world.branch(i, j, k);
-            const double dist = d.norm();
-            // A bonded pair pulled apart still has its springs.
-            const bool bonded = extras && L.extra[k].bonded;
-            if ((dist >= rs && !bonded) || dist <= 0.0) continue;
-            const PairLaw& law = world.pair_law(P.material[i], P.material[j]);
-            const double delta = rs - dist;
-            const NormalResult nr = normal_force(law, P.radius[i], P.radius[j], 0.0, delta, 0.0);
-            const double kn = normal_stiffness(law, P.radius[i], P.radius[j], nr.fn, delta);
-            const Vec nrm = d / dist;
-            const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], P.radius[j]);
-            const double kr = law.roll_mu > 0.0 ? k_roll : 0.0,
-                         ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
-            add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
-            add(body(j), nrm, kn, nr.kt, lever(j, -nrm), kr, ktw);
-          }
-          for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
-            Vec nrm;
-            double delta;
-            if (!wall_overlap(world.walls[L.wall[k]], P.pos[i], P.radius[i], nrm, delta)) continue;
-            const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
-            const double r2 = wall_partner_radius(law, P.radius[i]);
-            const NormalResult nr = normal_force(law, P.radius[i], r2, 0.0, delta, 0.0);
-            const double kn = normal_stiffness(law, P.radius[i], r2, nr.fn, delta);
-            const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], kWallRadius);
-            const double kr = law.roll_mu > 0.0 ? k_roll : 0.0,
-                         ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
-            add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
-          }
-          if (L.spar_start.size() != n + 1) continue;
-          const auto& S = world.spars;
-          for (std::uint32_t k = L.spar_start[i]; k < L.spar_start[i + 1]; ++k) {
-            const std::size_t e = L.spar[k];
-            const SparPoint<D> p = spar_point(S, e, P.pos[i]);
-            const Vec d = p.closest - P.pos[i];
-            const double dist = d.norm();
-            if (p.region != SparRegion::kOwned || dist <= 0.0 ||
-                dist >= P.radius[i] + S.half_thickness[e])
-              continue;
-            const PairLaw& law = world.pair_law(P.material[i], S.material[e]);
-            const double delta = P.radius[i] + S.half_thickness[e] - dist;
-            const double r2 = wall_partner_radius(law, P.radius[i]);
-            const NormalResult nr = normal_force(law, P.radius[i], r2, 0.0, delta, 0.0);
-            const double kn = normal_stiffness(law, P.radius[i], r2, nr.fn, delta);
-            const Vec nrm = d / dist;
-            add(body(i), nrm, kn, nr.kt, lever(i, nrm), 0.0, 0.0);
-          }
-        }
-      },
-      world.fixed_slab(n));
+  const SlabPlan plan = have_list ? world.slab_plan(n) : SlabPlan::uniform(0);
+  crossing.prepare(plan);
+  for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
+    auto out = crossing.slab(s);
+    auto add = [&](std::size_t b, const Vec& nrm, double kn, double kt, const Vec& l, double kr,
+                   double ktw) {
+      const SlabCrossing<D> c = DiagonalStiffness<D>::share(b, nrm, kn, kt, l, kr, ktw);
+      if (b >= first && b < last) {
+        K.add(c);
+      } else {
+        out.push(c);
+      }
+    };
+    for (std::size_t i = first; i < last; ++i) {
+      for (std::uint32_t k = L.start[i]; k < L.start[i + 1]; ++k) {
+        const std::uint32_t j = L.other[k];
+        const double rs = P.radius[i] + P.radius[j];
+        const Vec d = world.branch(i, j, k);
+        const double dist = d.norm();
+        // A bonded pair pulled apart still has its springs.
+        const bool bonded = extras && L.extra[k].bonded;
+        if ((dist >= rs && !bonded) || dist <= 0.0) continue;
+        const PairLaw& law = world.pair_law(P.material[i], P.material[j]);
+        const double delta = rs - dist;
+        const NormalResult nr = normal_force(law, P.radius[i], P.radius[j], 0.0, delta, 0.0);
+        const double kn = normal_stiffness(law, P.radius[i], P.radius[j], nr.fn, delta);
+        const Vec nrm = d / dist;
+        const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], P.radius[j]);
+        const double kr = law.roll_mu > 0.0 ? k_roll : 0.0, ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
+        add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
+        add(body(j), nrm, kn, nr.kt, lever(j, -nrm), kr, ktw);
+      }
+      for (std::uint32_t k = L.wall_start[i]; k < L.wall_start[i + 1]; ++k) {
+        Vec nrm;
+        double delta;
+        if (!wall_overlap(world.walls[L.wall[k]], P.pos[i], P.radius[i], nrm, delta)) continue;
+        const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
+        const double r2 = wall_partner_radius(law, P.radius[i]);
+        const NormalResult nr = normal_force(law, P.radius[i], r2, 0.0, delta, 0.0);
+        const double kn = normal_stiffness(law, P.radius[i], r2, nr.fn, delta);
+        const double k_roll = law.rolling_stiffness(nr.kt, P.radius[i], kWallRadius);
+        const double kr = law.roll_mu > 0.0 ? k_roll : 0.0, ktw = law.twist_mu > 0.0 ? k_roll : 0.0;
+        add(body(i), nrm, kn, nr.kt, lever(i, nrm), kr, ktw);
+      }
+      if (L.spar_start.size() != n + 1) continue;
+      const auto& S = world.spars;
+      for (std::uint32_t k = L.spar_start[i]; k < L.spar_start[i + 1]; ++k) {
+        const std::size_t e = L.spar[k];
+        const SparPoint<D> p = spar_point(S, e, P.pos[i]);
+        const Vec d = p.closest - P.pos[i];
+        const double dist = d.norm();
+        if (p.region != SparRegion::kOwned || dist <= 0.0 ||
+            dist >= P.radius[i] + S.half_thickness[e])
+          continue;
+        const PairLaw& law = world.pair_law(P.material[i], S.material[e]);
+        const double delta = P.radius[i] + S.half_thickness[e] - dist;
+        const double r2 = wall_partner_radius(law, P.radius[i]);
+        const NormalResult nr = normal_force(law, P.radius[i], r2, 0.0, delta, 0.0);
+        const double kn = normal_stiffness(law, P.radius[i], r2, nr.fn, delta);
+        const Vec nrm = d / dist;
+        add(body(i), nrm, kn, nr.kt, lever(i, nrm), 0.0, 0.0);
+      }
+    }
+  });
   crossing.apply(world.threads, [&K](const SlabCrossing<D>& c) { K.add(c); });
 
   // dt^2 = 2 x the smallest of m/K_t and I/K_r (the sqrt(2) of yade: the critical

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -112,14 +113,23 @@ struct WorldSettings {
   // counts them asks (a square root per wall contact otherwise spared).
   bool tally_wall_dashpots = false;
   // The force stage's grains in one slab instead of slab_length(n) each: every grain then sums
-  // its contacts in the order of its partners' indices alone (a distributed run's ranks hold
-  // different numbers of grains, whose slabs would differ).
+  // its contacts in the order of its partners' indices alone.
   bool one_slab = false;
   // Set when the world is one rank's part of a decomposed domain (domain/slab_domain.hpp).
   std::shared_ptr<DomainHooks<D>> domain;
+  // The slabs' starts (then n at the end), when a decomposed domain sets them: a rank's slabs
+  // follow its grains' keys, so that each grain sums its contacts in the same order on every
+  // rank (its slab differs from the uniform one of a rank that holds other grains).
+  std::vector<std::uint32_t> slab_starts;
 
-  // The slab length the force stage uses (0: slab_length(n), base/parallel.hpp).
-  std::size_t fixed_slab(std::size_t n) const { return one_slab ? std::max<std::size_t>(n, 1) : 0; }
+  // The slabs of the force and time-step stages (base/parallel.hpp).
+  SlabPlan slab_plan(std::size_t n) const {
+    if (!slab_starts.empty()) {
+      if (slab_starts.back() != n) throw std::logic_error("the domain's slabs miss grains");
+      return SlabPlan::given(n, slab_starts);
+    }
+    return SlabPlan::uniform(n, one_slab ? std::max<std::size_t>(n, 1) : 0);
+  }
 };
 
 // State: what the step advances and a checkpoint saves (world/world_state.cpp): the bodies,

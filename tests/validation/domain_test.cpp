@@ -17,11 +17,14 @@
 namespace geodem::test {
 namespace {
 
+// `one_slab`: the force stage in one slab (one process's reference, and ranks that keep its
+// bits); else a decomposed world's slabs follow blocks of keys, and `threads` share them.
 template <int D>
-World<D> packing(bool extras, int sort_interval) {
+World<D> packing(bool extras, int sort_interval, bool one_slab = true, int threads = 1) {
   World<D> w = pressed_packing<D>(extras, D == 2 ? 6000 : 4000, D == 2 ? 80 : 16, 40.0, 5);
   w.sort_interval = sort_interval;
-  w.one_slab = true;
+  w.one_slab = one_slab;
+  w.threads = threads;
   return w;
 }
 
@@ -41,7 +44,8 @@ void advance(World<D>& w, int from = 0, int to = kSteps) {
 template <int D>
 std::vector<World<D>> on_ranks(bool extras, int sort_interval, int ranks, bool& moved,
                                std::vector<Sums<D>>& sums, int rebalance_every = 10,
-                               bool* cuts_moved = nullptr) {
+                               bool* cuts_moved = nullptr, bool one_slab = true,
+                               int threads_each = 1) {
   Hub hub(ranks);
   std::vector<World<D>> parts(static_cast<std::size_t>(ranks));
   std::vector<std::uint64_t> migrated(parts.size(), 0);
@@ -50,7 +54,7 @@ std::vector<World<D>> on_ranks(bool extras, int sort_interval, int ranks, bool& 
   for (int r = 0; r < ranks; ++r)
     threads.emplace_back([&, r] {
       auto& w = parts[static_cast<std::size_t>(r)];
-      w = packing<D>(extras, sort_interval);
+      w = packing<D>(extras, sort_interval, one_slab, threads_each);
       auto d = SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r));
       d->rebalance_every = rebalance_every;
       d->rebalance_tolerance = 0.0;  // move whenever the times differ
@@ -102,7 +106,10 @@ TYPED_TEST(DomainTest, ThreeRanksGiveTheBitsOfOneProcess) {
 
 // Grains put in cell order every 3 list builds (keys retaken by their owners), and the cuts
 // moved at every build to balance the ranks' measured times: 1, 2 and 3 ranks end in the same
-// bits, grains and the domain's sums, and the ranks' grains did leave id order.
+// bits, grains and the domain's sums, and the ranks' grains did leave id order. The force
+// stage runs in slabs of blocks of keys (several on one rank), the ranks of 2 and 3 on two
+// threads each, the rank of 1 on one: a grain sums its contacts in the same order however
+// many grains its rank holds and however many threads share them.
 TYPED_TEST(DomainTest, RanksInCellOrderAgree) {
   constexpr int D = TypeParam::value;
   bool cuts_moved = false;  // in some of the runs (they follow measured times)
@@ -111,14 +118,15 @@ TYPED_TEST(DomainTest, RanksInCellOrderAgree) {
     bool moved = false;
     std::size_t ghosts = 0;
     std::vector<Sums<D>> one_sums, sums;
-    const auto one = on_ranks<D>(extras, 3, 1, moved, one_sums);
+    const auto one = on_ranks<D>(extras, 3, 1, moved, one_sums, 10, nullptr, false, 1);
     const std::size_t n = one[0].particles.size();
     EXPECT_FALSE(std::is_sorted(one[0].particles.id.begin(), one[0].particles.id.end()));
+    EXPECT_GE(one[0].slab_starts.size(), 3u) << "one slab: no crossing between slabs is tested";
     const auto reference = by_id(one, n, ghosts);
     for (int ranks : {2, 3}) {
       SCOPED_TRACE(::testing::Message() << ranks << " ranks");
       bool moved_here = false;
-      const auto parts = on_ranks<D>(extras, 3, ranks, moved, sums, 1, &moved_here);
+      const auto parts = on_ranks<D>(extras, 3, ranks, moved, sums, 1, &moved_here, false, 2);
       cuts_moved |= moved_here;
       expect_same<D>(by_id(parts, n, ghosts), reference);
       EXPECT_GT(ghosts, 0u);
@@ -128,6 +136,24 @@ TYPED_TEST(DomainTest, RanksInCellOrderAgree) {
     }
   }
   EXPECT_TRUE(cuts_moved);
+}
+
+// Slabs of blocks of ids (keys retaken never), one rank on two threads and three ranks on
+// one: the same bits.
+TYPED_TEST(DomainTest, ThreadsInsideRanksKeepTheBits) {
+  constexpr int D = TypeParam::value;
+  bool moved = false;
+  std::size_t ghosts = 0;
+  std::vector<Sums<D>> one_sums, sums;
+  const auto one = on_ranks<D>(true, 0, 1, moved, one_sums, 0, nullptr, false, 2);
+  const std::size_t n = one[0].particles.size();
+  EXPECT_GE(one[0].slab_starts.size(), 3u);
+  const auto reference = by_id(one, n, ghosts);
+  const auto parts = on_ranks<D>(true, 0, 3, moved, sums, 0, nullptr, false, 1);
+  expect_same<D>(by_id(parts, n, ghosts), reference);
+  EXPECT_TRUE(moved);
+  for (const auto& w : parts) EXPECT_EQ(w.dt, one[0].dt);
+  for (const auto& s : sums) expect_sums<D>(s, one_sums[0], 0.0);
 }
 
 // Grains removed in a band halfway (a stage's excavation): every rank removes its grains and
@@ -177,26 +203,27 @@ TYPED_TEST(DomainTest, RemovingGrainsKeepsTheBitsOfOneRank) {
 
 // A checkpoint of a decomposed run (the whole domain gathered on rank 0 as one world, the
 // contact history as records with the keys) resumed on another number of ranks goes on with
-// the bits of the uninterrupted run: 3 ranks stopped at step 150, resumed on 2 and on 1.
+// the bits of the uninterrupted run: 3 ranks stopped at step 150, resumed on 2 and on 1
+// (force slabs of blocks of keys, which the checkpoint keeps).
 TYPED_TEST(DomainTest, ACheckpointResumesOnOtherRankCounts) {
   constexpr int D = TypeParam::value;
   constexpr int kCut = 150;
   bool moved = false;
   std::size_t ghosts = 0;
   std::vector<Sums<D>> sums;
-  const auto uninterrupted = on_ranks<D>(true, 3, 3, moved, sums, 0);
+  const auto uninterrupted = on_ranks<D>(true, 3, 3, moved, sums, 0, nullptr, false, 1);
   std::size_t n = 0;
   for (const auto& w : uninterrupted) n += w.particles.size();
   n -= ghosts_in(uninterrupted);
   const auto reference = by_id(uninterrupted, n, ghosts);
   const SavedDomain saved = checkpoint_on_ranks<D>(
-      3, [] { return packing<D>(true, 3); }, [](World<D>& w) { advance(w, 0, kCut); });
+      3, [] { return packing<D>(true, 3, false); }, [](World<D>& w) { advance(w, 0, kCut); });
   EXPECT_EQ(saved.grains, n);
   EXPECT_GT(saved.pairs, 0u);
   for (int ranks : {2, 1}) {
     SCOPED_TRACE(::testing::Message() << "resumed on " << ranks << " ranks");
     const auto parts = resume_on_ranks<D>(
-        ranks, saved, [] { return packing<D>(true, 3); },
+        ranks, saved, [] { return packing<D>(true, 3, true, 2); },
         [](World<D>& w) { advance(w, kCut, kSteps); });
     expect_same<D>(by_id(parts, n, ghosts), reference);
     for (const auto& w : parts) EXPECT_EQ(w.dt, uninterrupted[0].dt);
