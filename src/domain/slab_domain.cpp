@@ -157,11 +157,16 @@ template <int D>
 std::uint64_t SlabDomain<D>::cell_key(const typename Dim<D>::Vec& x, std::uint32_t id) const {
   if (sort_every_ <= 0) return id;
   std::uint64_t cell = 0;
-  for (int k = D - 1; k >= 0; --k) {
+  // x slowest: a block of consecutive cells (a force slab, set_slab_starts) is then a slice
+  // across x, like the ranks' slabs, and only contacts across its two faces cross to another
+  // slab. (With x fastest, as the neighbour search's cells, a block was a strip of one layer
+  // of cells, every contact between layers crossed, and a rank on one thread ran 24 % slower
+  // than with one slab on a 200,000-sphere bed.)
+  for (int k = 0; k < D; ++k) {
     const auto dims = grid_dims_[static_cast<std::size_t>(k)];
     const double c = std::floor((x[k] - grid_lo_[k]) / ghost_width_);
     const auto ck = c <= 0.0 ? 0 : std::min(static_cast<std::uint64_t>(c), dims - 1);
-    cell = cell * dims + ck;  // x fastest, as the neighbour search's cells
+    cell = cell * dims + ck;
   }
   return (cell << 32) | id;
 }
