@@ -122,7 +122,6 @@ class SlabCrossings {
   // Buckets for n grains; their contents are left to the slabs' tasks to clear.
   void prepare(const SlabPlan& plan) {
     plan_ = plan;
-    n_ = plan.n;
     slabs_ = plan.count;
     if (buckets_.size() < slabs_ * (slabs_ + 1)) buckets_.resize(slabs_ * (slabs_ + 1));
   }
@@ -152,7 +151,7 @@ class SlabCrossings {
     w.plan_ = &plan_, w.slabs_ = slabs_;
     // For the last slab there is no next one: bodies from n up go to slabs_.
     w.next_ = s + 1;
-    w.next_first_ = s + 1 < slabs_ ? plan_.first(s + 1) : n_;
+    w.next_first_ = s + 1 < slabs_ ? plan_.first(s + 1) : plan_.n;
     w.next_len_ = s + 1 < slabs_ ? plan_.last(s + 1) - w.next_first_ : 0;
     return w;
   }
@@ -164,7 +163,7 @@ class SlabCrossings {
     const std::size_t width = slabs_ + 1, sources = slabs_;
     const auto targets = static_cast<std::ptrdiff_t>(width);
 #pragma omp parallel for num_threads(threads) \
-    schedule(dynamic, 1) if (threads > 1 && n_ >= kParallelMin && sources >= 2)
+    schedule(dynamic, 1) if (threads > 1 && plan_.n >= kParallelMin && sources >= 2)
     for (std::ptrdiff_t t = 0; t < targets; ++t)
       for (std::size_t s = 0; s < sources; ++s)
         for (const Entry& e : b[s * width + static_cast<std::size_t>(t)]) add(e);
@@ -177,7 +176,7 @@ class SlabCrossings {
  private:
   std::vector<std::vector<Entry>> buckets_;  // source-major: [s * (slabs + 1) + target]
   SlabPlan plan_;                            // its starts, if any, must outlive the writers
-  std::size_t n_ = 0, slabs_ = 0;
+  std::size_t slabs_ = 0;
 };
 
 // Threads of a run when none is asked for: GEODEM_THREADS, else OMP_NUM_THREADS, else 1

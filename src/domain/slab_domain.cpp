@@ -91,12 +91,12 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
     d->sort_every_ = static_cast<int>(resumed->sort_every);
     d->grid_lo_ = resumed->grid_lo;
     d->grid_dims_ = resumed->grid_dims;
+    d->key_block_ = resumed->key_block;
   } else if (n > 0) {
     typename Dim<D>::Vec lo = P.pos[0], hi = P.pos[0];
     for (std::size_t i = 0; i < n; ++i) lo = lo.cwiseMin(P.pos[i]), hi = hi.cwiseMax(P.pos[i]);
     d->set_grid(lo, hi, n, world.one_slab);
   }
-  if (resumed) d->key_block_ = resumed->key_block;
   world.one_slab = d->key_block_ == 0;
   if (resumed) {
     d->pairs_ = resumed->pairs, d->walls_ = resumed->walls, d->spars_ = resumed->spars;

@@ -8,8 +8,9 @@
 // the grains are ordered by key, and the force stage's slabs (base/parallel.hpp) begin where
 // the keys enter a new block of the domain's key space, so each grain sums its contacts in an
 // order its partners' keys alone decide: the same bits for any number of ranks, and for any
-// number of threads in each. A key is the grain's cell in a grid fixed for the whole domain,
-// taken by its owner every sort_interval list builds (as one process renumbers grains in cell
+// number of threads in each. A key is the grain's cell in a grid the whole domain shares
+// (taken anew over all its grains at each retake), taken by its owner every sort_interval
+// list builds (as one process renumbers grains in cell
 // order), then its id; with sort_interval = 0 it is the id alone. A world distributed with
 // one_slab set keeps one slab a rank (its bits are those of one process with one slab).
 //

@@ -47,16 +47,14 @@ void SlabDomain<D>::before_build(World<D>& world) {
     using Vec = typename Dim<D>::Vec;
     const double inf = std::numeric_limits<double>::infinity();
     Vec lo = Vec::Constant(inf), hi = Vec::Constant(-inf);
-    std::vector<ExactSum> count(1);
     for (std::size_t i = 0; i < n_old; ++i)
-      if (!(P.flags[i] & kGhost)) {
-        lo = lo.cwiseMin(P.pos[i]), hi = hi.cwiseMax(P.pos[i]);
-        count[0].add(1.0);
-      }
+      if (!(P.flags[i] & kGhost)) lo = lo.cwiseMin(P.pos[i]), hi = hi.cwiseMax(P.pos[i]);
     for (int k = 0; k < D; ++k) lo[k] = comm_->min(lo[k]), hi[k] = comm_->max(hi[k]);
+    std::vector<ExactSum> count(1);
+    count[0].add(static_cast<double>(owned(world)));
     comm_->sum(count);
     const auto grains = static_cast<std::uint64_t>(count[0].value());
-    if (grains > 0) set_grid(lo, hi, grains, world.one_slab);
+    if (grains > 0) set_grid(lo, hi, grains, key_block_ == 0);
     for (std::size_t i = 0; i < n_old; ++i)
       if (!(P.flags[i] & kGhost)) key_[i] = cell_key(P.pos[i], P.id[i]);
   }
