@@ -130,12 +130,13 @@ int run_main(int argc, char** argv) {
     // Under mpirun a study shares its runs across the ranks; a scene spreads its world over them
     // (with -n 1 too, so that 1, 2 and 4 ranks give the same bits).
     opt.decompose = geodem::comm::active() && !shared && kind.decomposes;
+    opt.primary = !opt.decompose || geodem::comm::rank() == 0;
     if (geodem::comm::size() > 1 && !shared && !kind.decomposes)
       throw geodem::InputError(scenario, l.kind_line, "kind",
                                "under mpirun, studies (series, rate_study, calibrate) and "
-                               "pull-outs over seeds share their runs across the ranks and "
-                               "scenes spread their grains over them; run this kind without "
-                               "mpirun");
+                               "pull-outs over seeds share their runs across the ranks, and "
+                               "scenes and triaxial tests spread their grains over them; run "
+                               "this kind without mpirun");
     // Single runs stop on SIGINT/SIGTERM after the step in progress, with a checkpoint;
     // runs shared as a study's keep the default (their finished runs are reused).
     if (!shared) geodem::install_interrupt_handlers();

@@ -57,6 +57,9 @@ class RadiusGrowth : public Controller<D> {
       rmax = std::max(rmax, P.radius[i] + P.body_offset[i].norm());
     }
     w.clumps.scale(m);
+    // (a decomposed world: the whole domain's largest, so that every rank rebuilds together
+    // and as one process would)
+    if (w.domain) rmax = -w.domain->min_over_ranks(-rmax);
     // Gaps close by at most (r_i + r_j)(m - 1): counts as a displacement of rmax (m - 1).
     if (m > 1.0) w.radius_growth += rmax * (m - 1.0) / m;
   }

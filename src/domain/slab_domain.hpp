@@ -67,6 +67,9 @@ class SlabDomain final : public DomainHooks<D> {
   void grains_added(World<D>& world, std::size_t first_grain, std::size_t first_clump);
   void after_integration(World<D>& world) override;
 
+  // A copy of this domain's state, for a copy of its world (a lab test's prepared sample,
+  // which each test starts from): the copy goes on as this domain would from here.
+  std::shared_ptr<SlabDomain> copy() const { return std::shared_ptr<SlabDomain>(new SlabDomain(*this)); }
   DomainComm& comm() { return *comm_; }
   // Every this many list builds the cuts move so that each slab holds the same work, from
   // each rank's measured step time per grain, unless the slowest rank is within
@@ -98,6 +101,8 @@ class SlabDomain final : public DomainHooks<D> {
   // The force slabs' starts (World::slab_starts) from the grains' keys: a slab for each run of
   // keys in one block.
   void set_slab_starts(World<D>& world) const;
+  // The ghost width grown to the grains' present reach (every rank at a build).
+  void follow_grain_growth(const World<D>& world);
   std::int64_t local_index(std::uint32_t id) const;
   // Where a grain belongs: its centre, or a member's clump's centre (x).
   double home_x(const World<D>& world, std::size_t i) const;

@@ -29,6 +29,31 @@ bool contains(const std::vector<std::uint32_t>& sorted, std::uint32_t id) {
 
 }  // namespace
 
+// Radius growth (the triaxial compaction) widens the reach of a contact: the ghost width
+// follows the whole domain's largest grain (and clump member offset), taken alike on every
+// rank, so the keys' grid (cells a ghost width across) is the same for any number of ranks.
+template <int D>
+void SlabDomain<D>::follow_grain_growth(const World<D>& world) {
+  const auto& P = world.particles;
+  double rmax = 0.0, offset = 0.0;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (!(P.flags[i] & kGhost)) {
+      rmax = std::max(rmax, P.radius[i]);
+      if (clumped_ && P.clump[i] != kNoClump) offset = std::max(offset, P.body_offset[i].norm());
+    }
+  rmax = comm_->max(rmax);
+  if (clumped_ && extent_ > 0.0) extent_ = std::max(extent_, comm_->max(offset) + 0.5 * skin_);
+  const double width = 2.0 * rmax + skin_ + extent_;
+  if (!(width > ghost_width_)) return;
+  ghost_width_ = width;
+  for (std::size_t q = 1; q + 2 < cuts_.size(); ++q)
+    if (cuts_[q + 1] - cuts_[q] < min_slab())
+      throw InputError("", 0, "",
+                       "the grains grew to a ghost width of " + std::to_string(ghost_width_) +
+                           " m: a slab of " + std::to_string(cuts_[q + 1] - cuts_[q]) +
+                           " m is too thin; use fewer ranks (docs/parallel.md)");
+}
+
 template <int D>
 void SlabDomain<D>::before_build(World<D>& world) {
   auto& P = world.particles;
@@ -39,6 +64,7 @@ void SlabDomain<D>::before_build(World<D>& world) {
     rebalance(world);
     builds_since_rebalance_ = 1;
   }
+  follow_grain_growth(world);
   // Every sort_interval builds (counted alike on every rank) each owner retakes its grains'
   // keys from their cells now: neighbours then sit close in memory, as on one process. The
   // grid is taken anew over the whole domain's grains (a deposit that settled to the bottom

@@ -22,7 +22,7 @@ constexpr char kMagic[8] = {'G', 'E', 'O', 'D', 'E', 'M', 'C', 'K'};
 // periodic cell; 5: a wall's second edge (rectangles); 6: a pull-out's sheet parts (the
 // bend's corner and the row sums of the parts' loads); 7: a decomposed run's skin, ghost width
 // and clump reach.
-constexpr std::uint32_t kFormatVersion = 8;
+constexpr std::uint32_t kFormatVersion = 9;
 // Byte order and the sizes the archive relies on, in one word.
 constexpr std::uint32_t kMachineMark =
     0x01020000u | static_cast<std::uint32_t>(sizeof(void*) << 8) | sizeof(double);

@@ -18,6 +18,8 @@ struct RunOptions {
   bool resume = false;  // continue from the newest valid checkpoint in out_dir
   // One model over the ranks of mpirun (docs/parallel.md): the runner decomposes its world.
   bool decompose = false;
+  // Writes the outputs: false on the ranks of a decomposed run other than rank 0.
+  bool primary = true;
 };
 
 // Creates DIR and DIR/vtk (exit code 1 on failure).

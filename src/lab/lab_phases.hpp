@@ -27,8 +27,9 @@ void run_lab_phases(Runner& r, const std::string& kind, const nlohmann::json& re
     const std::string why = r.checkpoints.diagnosis(
         std::string(e.what()) + " [" + kind +
         " tests take the automatic time step: time.safety (default 0.8); the soil's young]");
-    write_stopped_summary(opt.out_dir, kind, resolved, "unstable", why, r.checkpoints.last(),
-                          opt.threads);
+    if (opt.primary)
+      write_stopped_summary(opt.out_dir, kind, resolved, "unstable", why, r.checkpoints.last(),
+                            opt.threads);
     throw InstabilityError(why);
   }
   r.progress.finish();
@@ -42,8 +43,9 @@ nlohmann::json summarise_interruption(const std::string& kind, const nlohmann::j
   try {
     return body();
   } catch (const Interrupted& i) {
-    write_stopped_summary(opt.out_dir, kind, resolved, "interrupted",
-                          "signal " + std::to_string(i.signal), i.checkpoint, opt.threads);
+    if (opt.primary)
+      write_stopped_summary(opt.out_dir, kind, resolved, "interrupted",
+                            "signal " + std::to_string(i.signal), i.checkpoint, opt.threads);
     throw;
   }
 }

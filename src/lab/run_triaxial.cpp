@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <numbers>
 #include <stdexcept>
 
@@ -21,6 +23,7 @@
 #include "lab/triaxial_sample.hpp"
 #include "lab/triaxial_test_state.hpp"
 #include "measure/measurements.hpp"
+#include "scene/scene_domain.hpp"
 #include "walls/lab_box.hpp"
 #include "world/world_state.hpp"
 
@@ -48,8 +51,13 @@ struct Lab {
   static constexpr int kDim = D, kAxial = D - 1;
   const TriaxialSettings& s;
   const RunOptions& opt;
+  const bool root;  // writes the outputs: one process, or rank 0 of a decomposed run
   World<D> w;
   World<D> prepared;  // the sample every test starts from
+  // Over the ranks of mpirun (docs/parallel.md): this rank's part of the sample under test
+  // and of the prepared one, and their keys and contact history in a checkpoint.
+  std::shared_ptr<SlabDomain<D>> domain, prepared_domain;
+  DomainCheckpoint<D> saved, saved_prepared;
   LabBox<D> box;
   Progress progress;
   HistoryCsv prep_csv, history;
@@ -72,7 +80,8 @@ struct Lab {
   Lab(const TriaxialSettings& settings, const RunOptions& options)
       : s(settings),
         opt(options),
-        progress(options.quiet),
+        root(options.primary),
+        progress(options.quiet || !options.primary),
         vtk(options.out_dir),
         checkpoints(lab_kind_name(settings.kind), D, settings.resolved, options.out_dir,
                     settings.checkpoint) {
@@ -104,27 +113,69 @@ struct Lab {
     element.visit(a);
   }
 
+  // The runner's part of a checkpoint and the world's (rank 0's whole domain when
+  // decomposed: DomainWorldOnRank0).
+  void save(StateWriter& runner, StateWriter& world) {
+    visit_state(runner);
+    runner(elapsed());
+    runner(static_cast<std::uint64_t>(prep_csv.rows()));
+    runner(static_cast<std::uint64_t>(history.rows()));
+    vtk.save(runner);
+    const bool tests_begun = phase >= Phase::kConsolidation;
+    const std::uint8_t decomposed = domain ? 1 : 0;
+    runner(static_cast<std::uint8_t>(tests_begun)), runner(decomposed);
+    if (decomposed) saved.visit(runner);
+    if (tests_begun) {
+      StateWriter sample;
+      save_world_state(sample, prepared);
+      runner(sample.bytes());
+      if (decomposed) saved_prepared.visit(runner);
+    }
+    save_world_state(world, w);
+  }
+
   // After a whole step: a checkpoint when due, and the stop on a signal. Checkpoints are
   // numbered by the run's step count: the world's restarts with each test's sample.
   // Closes a step of a loop (io/step_loop.hpp): a checkpoint when due; a signal stops the
   // run by throwing Interrupted, so the loop never goes on from here.
   bool after_step() {
-    checkpoints.after_step(total_steps, w.time, [&](StateWriter& runner, StateWriter& world) {
-      visit_state(runner);
-      runner(elapsed());
-      runner(static_cast<std::uint64_t>(prep_csv.rows()));
-      runner(static_cast<std::uint64_t>(history.rows()));
-      vtk.save(runner);
-      const bool tests_begun = phase >= Phase::kConsolidation;
-      runner(static_cast<std::uint8_t>(tests_begun));
-      if (tests_begun) {
-        StateWriter sample;
-        save_world_state(sample, prepared);
-        runner(sample.bytes());
-      }
-      save_world_state(world, w);
-    });
+    if (!domain) {
+      checkpoints.after_step(total_steps, w.time,
+                             [&](StateWriter& runner, StateWriter& world) { save(runner, world); });
+      return false;
+    }
+    // The ranks stop together, at a step they agree on; wall-clock checkpoints are any rank's.
+    const bool signal = total_steps % 64 == 0 && domain->any_rank(interrupt_signal() != 0);
+    const bool due = checkpoints.due(total_steps);
+    if (signal || (s.checkpoint.enabled() ? domain->any_rank(due) : due)) {
+      DomainWorldOnRank0<D> whole(w, domain.get(), saved);
+      std::optional<DomainWorldOnRank0<D>> whole_prepared;
+      if (phase >= Phase::kConsolidation)
+        whole_prepared.emplace(prepared, prepared_domain.get(), saved_prepared);
+      if (root)
+        checkpoints.write_with(total_steps, w.time, [&](StateWriter& runner, StateWriter& world) {
+          save(runner, world);
+        });
+    }
+    saved = saved_prepared = DomainCheckpoint<D>{};
+    if (signal) throw Interrupted{interrupt_signal() ? interrupt_signal() : 15, checkpoints.last()};
     return false;
+  }
+
+  // Spreads the sample (and the prepared one, once made) over the ranks of mpirun; a checkpoint
+  // of a decomposed run resumed in one process goes on as a domain of one rank (the same bits).
+  void decompose(bool was_decomposed) {
+    if (!opt.decompose && !was_decomposed) return;
+    if (s.periodic)
+      throw InputError(s.file, 0, "sample.boundary",
+                       "a periodic cell is not spread over MPI ranks yet (docs/parallel.md); run "
+                       "it without mpirun");
+    const bool local = !opt.decompose;
+    domain = decompose_world(w, s.file, was_decomposed ? &saved : nullptr, local);
+    if (phase >= Phase::kConsolidation)
+      prepared_domain =
+          decompose_world(prepared, s.file, was_decomposed ? &saved_prepared : nullptr, local);
+    saved = saved_prepared = DomainCheckpoint<D>{};
   }
 
   // Steps with measurement every `every` steps; stops when `done()` holds on a
@@ -151,9 +202,25 @@ struct Lab {
 
   // One row of preparation.csv; phase 1 compaction, 2 friction reduction, 3 stabilisation.
   void prep_row(double code) {
-    prep_csv.row({code, static_cast<double>(w.step), w.time, box.mean_stress(w), porosity(),
-                  grain_friction_deg(), unbalanced_force_ratio(w), coordination_number(w),
-                  w.particles.radius.empty() ? 0.0 : w.particles.radius[0]});
+    const std::vector<double> row = {code,
+                                     static_cast<double>(w.step),
+                                     w.time,
+                                     box.mean_stress(w),
+                                     porosity(),
+                                     grain_friction_deg(),
+                                     unbalanced_force_ratio(w),
+                                     coordination_number(w),
+                                     radius_of_first_grain()};
+    if (root) prep_csv.row(row);
+  }
+  // The radius of the grain of id 0 (all grow alike: the course of the radius growth).
+  double radius_of_first_grain() const {
+    const auto& P = w.particles;
+    double r = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (P.id[i] == 0 && !(P.flags[i] & kGhost)) r = P.radius[i];
+    if (domain) r = domain->min_over_ranks(r);
+    return std::isfinite(r) ? r : 0.0;
   }
   bool bonds() const { return s.bonds_create != "none"; }
 
@@ -173,37 +240,43 @@ struct Lab {
 
   void start() {
     prepare_output_dir(opt.out_dir);
-    prep_csv.open(opt.out_dir + "/preparation.csv", triaxial_prep_columns());
+    if (root) prep_csv.open(opt.out_dir + "/preparation.csv", triaxial_prep_columns());
     w.local_damping = s.compaction_damping;
     phase = Phase::kCompaction;
     install_controllers(false);
+    decompose(false);
   }
 
   // Rebuilt from the scenario (build()), then the newest valid checkpoint's state.
   void resume() {
-    const Checkpoint c = checkpoints.resume(s.file, {});
+    const Checkpoint c = checkpoints.resume(s.file, {}, root);
     StateReader in(c.runner.data(), c.runner.size());
     visit_state(in);
     std::uint64_t prep_rows = 0, history_rows = 0;
-    std::uint8_t tests_begun = 0;
+    std::uint8_t tests_begun = 0, decomposed = 0;
     double wall_before = 0.0;
     in(wall_before), in(prep_rows), in(history_rows);
-    vtk.restore(in);
-    in(tests_begun);
+    vtk.restore(in, root);
+    in(tests_begun), in(decomposed);
+    if (decomposed) saved.visit(in);
     if (tests_begun) {
       std::string sample;
       in(sample);
       prepared = w;  // the scenario's walls and materials, no controllers
       StateReader sin(sample.data(), sample.size());
       load_world_state(sin, prepared);
+      if (decomposed) saved_prepared.visit(in);
     }
     install_controllers(true);
     StateReader win(c.world.data(), c.world.size());
     load_world_state(win, w);
-    prep_csv.resume_rows(opt.out_dir + "/preparation.csv", triaxial_prep_columns(), prep_rows);
-    if (tests_begun)
-      history.resume_rows(opt.out_dir + "/history.csv", history_columns(), history_rows);
+    if (root) {
+      prep_csv.resume_rows(opt.out_dir + "/preparation.csv", triaxial_prep_columns(), prep_rows);
+      if (tests_begun)
+        history.resume_rows(opt.out_dir + "/history.csv", history_columns(), history_rows);
+    }
     checkpoints.resume_clock(wall_before);
+    decompose(decomposed != 0);
   }
 
   // Holds at the compaction stress with a small unbalanced force (rows of `code`).
@@ -271,7 +344,8 @@ struct Lab {
     prep["steps"] = w.step;
     w.controllers.clear();
     prepared = w;
-    history.open(opt.out_dir + "/history.csv", history_columns());
+    if (domain) prepared_domain = domain->copy(), prepared.domain = prepared_domain;
+    if (root) history.open(opt.out_dir + "/history.csv", history_columns());
     if (s.vtk) vtk.write(prepared);
     test = 0;
     begin_test();
@@ -280,6 +354,7 @@ struct Lab {
   // Isotropic re-consolidation of the prepared sample to this test's confining stress.
   void begin_test() {
     w = prepared;
+    if (prepared_domain) domain = prepared_domain->copy(), w.domain = domain;
     w.local_damping = s.shear_damping;
     shear = Shear<D>{};
     phase = Phase::kConsolidation;
@@ -324,7 +399,7 @@ struct Lab {
 
   void begin_compression() {
     if (s.bonds_create == "before_shear") shear.bonds_made = create_bonds(w, s.bond_gap_tolerance);
-    shear.broken0 = w.broken_bonds;
+    shear.broken0 = broken_bond_count(w);
     shear.porosity0 = porosity();
     shear.height0 = box.size(w)[kAxial];
     shear.d0 = equivalent_diameter<D>(solid_volume(w) / static_cast<double>(body_count(w)));
@@ -389,7 +464,7 @@ struct Lab {
       row.push_back(v);
     if (bonds()) {
       row.push_back(static_cast<double>(intact_bonds(w)));
-      row.push_back(static_cast<double>(w.broken_bonds - h.broken0));
+      row.push_back(static_cast<double>(broken_bond_count(w) - h.broken0));
     }
     h.p_end = p, h.q_end = s1 - s3;
     if (s.undrained) {
@@ -397,7 +472,7 @@ struct Lab {
       h.u_max = std::max(h.u_max, h.u_end);
       row.push_back(h.u_end);
     }
-    history.row(row);
+    if (root) history.row(row);
     h.curve.axial_strain.push_back(h.eps);
     h.curve.volumetric_strain.push_back(ev);
     h.curve.sigma1.push_back(s1);
@@ -471,8 +546,20 @@ nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
     const MohrCoulomb mc = fit_mohr_coulomb(lab.s1_peaks, lab.s3_peaks);
     results["mohr_coulomb"] = {{"cohesion", mc.cohesion}, {"phi_deg", mc.phi_deg}};
   }
-  return write_run_summary(opt.out_dir, kind, "completed", s.resolved, results,
-                           timing_json(lab.w, lab.elapsed(), lab.total_steps, opt.threads));
+  nlohmann::json timing = timing_json(lab.w, lab.elapsed(), lab.total_steps, opt.threads);
+  if (lab.domain) {  // the whole sample's grains and rate, rank 0's times
+    std::vector<ExactSum> owned(1);
+    owned[0].add(static_cast<double>(lab.domain->owned(lab.w)));
+    lab.domain->sum(owned);
+    const double grains = owned[0].value();
+    timing["ranks"] = lab.domain->ranks();
+    timing["particles"] = static_cast<std::uint64_t>(grains);
+    const double wall_s = timing["wall_s"].get<double>();
+    timing["particle_steps_per_s"] =
+        wall_s > 0.0 ? static_cast<double>(lab.total_steps) * grains / wall_s : 0.0;
+  }
+  if (!opt.primary) return {{"results", results}};
+  return write_run_summary(opt.out_dir, kind, "completed", s.resolved, results, timing);
 }
 
 }  // namespace

@@ -111,8 +111,8 @@ nlohmann::json test_results(const Shear<D>& h, const TriaxialSettings& s, double
   if (bonds) {
     r["bonds_at_start"] = s.bonds_create == "before_shear"
                               ? h.bonds_made
-                              : intact_bonds(w) + (w.broken_bonds - h.broken0);
-    r["bonds_broken"] = w.broken_bonds - h.broken0;
+                              : intact_bonds(w) + (broken_bond_count(w) - h.broken0);
+    r["bonds_broken"] = broken_bond_count(w) - h.broken0;
   }
   r["grains"] = body_count(w);
   if (!h.warning.empty()) r["warning"] = h.warning;

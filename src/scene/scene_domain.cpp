@@ -21,19 +21,22 @@ namespace {
 }  // namespace
 
 template <int D>
-std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
+std::shared_ptr<SlabDomain<D>> decompose_world(World<D>& world, const std::string& file,
                                                const DomainCheckpoint<D>* resumed, bool local) {
-  auto refuse = [&](const std::string& key, const std::string& what) {
-    geodem::refuse(s, key, what);
-  };
-  if (world.cell.periodic) refuse("cell", "a periodic cell is not distributed");
   try {
     const std::shared_ptr<DomainComm> comm =
         local ? std::make_shared<LocalDomainComm>() : mpi_domain_comm();
     return SlabDomain<D>::distribute(world, comm, resumed);
   } catch (const InputError& e) {  // too many ranks for the grains: name the file
-    throw InputError(s.file, 0, "mpirun -n", e.detail());
+    throw InputError(file, 0, "mpirun -n", e.detail());
   }
+}
+
+template <int D>
+std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
+                                               const DomainCheckpoint<D>* resumed, bool local) {
+  if (world.cell.periodic) refuse(s, "cell", "a periodic cell is not distributed");
+  return decompose_world(world, s.file, resumed, local);
 }
 
 namespace {
@@ -134,6 +137,10 @@ std::vector<typename Dim<D>::Vec> domain_positions_by_id(const World<D>& world,
   return ref;
 }
 
+template std::shared_ptr<SlabDomain<2>> decompose_world<2>(World<2>&, const std::string&,
+                                                           const DomainCheckpoint<2>*, bool);
+template std::shared_ptr<SlabDomain<3>> decompose_world<3>(World<3>&, const std::string&,
+                                                           const DomainCheckpoint<3>*, bool);
 template std::shared_ptr<SlabDomain<2>> decompose_scene<2>(const SceneSettings&, World<2>&,
                                                            const DomainCheckpoint<2>*, bool);
 template std::shared_ptr<SlabDomain<3>> decompose_scene<3>(const SceneSettings&, World<3>&,

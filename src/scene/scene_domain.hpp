@@ -17,6 +17,10 @@ namespace geodem {
 // decomposed run's checkpoint, SlabDomain::distribute); throws InputError for a periodic cell
 // (not distributed yet) and for slabs thinner than the ghost width.
 // With `local`: a domain of one rank in this process, without MPI.
+// The same for any world (a lab test's sample); an InputError names `file` and "mpirun -n".
+template <int D>
+std::shared_ptr<SlabDomain<D>> decompose_world(World<D>& world, const std::string& file,
+                                               const DomainCheckpoint<D>* resumed, bool local);
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
                                                const DomainCheckpoint<D>* resumed = nullptr,

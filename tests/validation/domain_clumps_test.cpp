@@ -13,6 +13,7 @@
 
 #include "clumps/clump_template.hpp"
 #include "contacts/bonds.hpp"
+#include "controllers/radius_growth.hpp"
 #include "domain_ranks.hpp"
 #include "world/world_editing.hpp"
 
@@ -110,6 +111,9 @@ template <int D>
 void advance(World<D>& w, int from, int to) {
   for (int k = from; k < to; ++k) {
     if (k == 100) w.walls[2].velocity = vec<D>(0.05, 0.0, 0.0);
+    // Radius growth (as the triaxial compaction's): members' offsets, masses and inertias
+    // grow on every rank alike, the ghost width with them.
+    if (k >= 150 && k < 450 && k % 10 == 0) RadiusGrowth<D>::scale(w, 1.001);
     if (k == kLayer) add_layer(w);
     if (k == kExcavation) {
       const auto& P = w.particles;
