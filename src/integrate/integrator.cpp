@@ -78,7 +78,10 @@ void integrate(World<D>& world) {
   // are checked exactly, like walls: they are few).
   // In a periodic cell the displacement from the affine motion, u, grows at v + L u.
   if (periodic) world.disp_bound += L.norm() * world.disp_bound * dt;
-  world.disp_bound += std::sqrt(vmax2) * dt;
+  if (world.domain)
+    world.last_move = std::sqrt(vmax2) * dt;  // (taken over ranks at the next list check)
+  else
+    world.disp_bound += std::sqrt(vmax2) * dt;
   if (!world.spars.empty()) integrate_spar_nodes(world);
 }
 

@@ -81,7 +81,22 @@ bool list_expired(World<D>& world) {
   double wall_disp = spar_max_displacement(world);
   for (const auto& w : world.walls) wall_disp = std::max(wall_disp, w.displacement.norm());
   auto expired = [&](double d) { return 2.0 * d > skin || d + wall_disp > skin; };
-  if (!expired(world.disp_bound + world.radius_growth)) return false;
+  if (world.domain) {
+    // Every rank takes the same decision from the same numbers, as one rank would: the bound
+    // grows by the largest move over all ranks (one message, which also carries a build
+    // asked for), and the exact pass is the largest over all ranks. (A rank's own bound and
+    // exact pass would not do: a member of a growing clump moves beyond its velocity's
+    // bound, so the exact pass could expire on one rank and never be reached on another.)
+    const double inf = std::numeric_limits<double>::infinity();
+    const double moved =
+        -world.domain->min_over_ranks(-(world.rebuild_needed ? inf : world.last_move));
+    world.last_move = 0.0;
+    if (moved == inf) return true;
+    world.disp_bound += moved;
+    if (!expired(world.disp_bound + world.radius_growth)) return false;
+  } else if (!expired(world.disp_bound + world.radius_growth)) {
+    return false;
+  }
   double d2 = 0.0;  // a maximum: the same in any order
 #pragma omp parallel for num_threads(world.threads) schedule(static) \
     reduction(max                                                    \
@@ -91,6 +106,7 @@ bool list_expired(World<D>& world) {
                   (P.pos[static_cast<std::size_t>(i)] - P.pos_at_build[static_cast<std::size_t>(i)])
                       .squaredNorm());
   world.disp_bound = std::sqrt(d2);
+  if (world.domain) world.disp_bound = -world.domain->min_over_ranks(-world.disp_bound);
   return expired(world.disp_bound + world.radius_growth);
 }
 
@@ -246,8 +262,9 @@ template <int D>
 void step(World<D>& world) {
   {
     ScopedStage<D> t(world, Stage::kNeighbours);
-    bool rebuild = world.rebuild_needed || list_expired(world);
-    if (world.domain) rebuild = world.domain->any_rank(rebuild);
+    // (a decomposed world's check is itself taken over the ranks: list_expired)
+    const bool rebuild = world.domain ? list_expired(world)
+                                      : world.rebuild_needed || list_expired(world);
     if (rebuild) {
       if (world.domain) world.domain->before_build(world);
       // A build is a run's peak of memory (the old rows and the new ones are both resident).

@@ -156,6 +156,10 @@ struct WorldState {
   // Largest grain displacement since the last build: bounded cheaply each step by
   // the sum of max |v| dt, measured exactly only when the bound reaches half the skin.
   double disp_bound = 0.0;
+  // A decomposed world: the last integration's bound (max |v| dt over this rank's grains),
+  // added to disp_bound as the largest over all ranks at the next list check, so that every
+  // rank holds the same bound and decides alike for any number of ranks.
+  double last_move = 0.0;
   // Growth of the largest radius since the last build (radius-growth compaction): gaps
   // close by at most twice this, so it counts like a displacement.
   double radius_growth = 0.0;

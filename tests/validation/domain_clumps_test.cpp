@@ -2,7 +2,8 @@
 // centre with all its members, ghost members bring a ghost clump that names their body, and a
 // clump whose centre crosses a cut moves with its members. Pair clumps and discs thrown
 // together in a box, with bonds and rolling friction or without, a band excavated halfway, a
-// layer of clumps and discs added by every rank alike (each keeps its own):
+// layer of clumps and discs added by every rank alike (each keeps its own), the radii grown by
+// steps for a while (as the triaxial compaction grows them):
 // 1, 2 and 3 ranks end in the same bits, grains and clumps, and with grains in id order in the
 // bits of one process; a checkpoint of 3 ranks resumes on 2 and 1 with the uninterrupted bits.
 #include <gtest/gtest.h>
@@ -113,7 +114,7 @@ void advance(World<D>& w, int from, int to) {
     if (k == 100) w.walls[2].velocity = vec<D>(0.05, 0.0, 0.0);
     // Radius growth (as the triaxial compaction's): members' offsets, masses and inertias
     // grow on every rank alike, the ghost width with them.
-    if (k >= 150 && k < 450 && k % 10 == 0) RadiusGrowth<D>::scale(w, 1.001);
+    if (k >= 150 && k < 250 && k % 10 == 0) RadiusGrowth<D>::scale(w, 1.001);
     if (k == kLayer) add_layer(w);
     if (k == kExcavation) {
       const auto& P = w.particles;
