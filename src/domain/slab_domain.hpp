@@ -69,7 +69,9 @@ class SlabDomain final : public DomainHooks<D> {
 
   // A copy of this domain's state, for a copy of its world (a lab test's prepared sample,
   // which each test starts from): the copy goes on as this domain would from here.
-  std::shared_ptr<SlabDomain> copy() const { return std::shared_ptr<SlabDomain>(new SlabDomain(*this)); }
+  std::shared_ptr<SlabDomain> copy() const {
+    return std::shared_ptr<SlabDomain>(new SlabDomain(*this));
+  }
   DomainComm& comm() { return *comm_; }
   // Every this many list builds the cuts move so that each slab holds the same work, from
   // each rank's measured step time per grain, unless the slowest rank is within

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "lab/soil_parameters.hpp"
 #include "study/linear_fit.hpp"
 
 namespace geodem {
@@ -237,6 +238,24 @@ nlohmann::json cyclic_results(const std::vector<double>& amplitudes, int cycles,
   r["shear_modulus_max"] = g_max;
   r["amplitudes"] = curve;
   return r;
+}
+
+nlohmann::json lab_run_results(LabKind kind, const nlohmann::json& preparation,
+                               const nlohmann::json& tests) {
+  nlohmann::json results;
+  results["preparation"] = preparation;
+  results["tests"] = tests;
+  if (tests.size() == 1)
+    for (auto& [k, v] : tests[0].items()) results[k] = v;  // the contract's flat keys
+  if (kind == LabKind::kSimpleShear || kind == LabKind::kDirectShear) {
+    results["shear_envelope"] = shear_envelopes(tests);
+  } else if (kind == LabKind::kTriaxial && tests.size() > 1) {
+    std::vector<double> s1, s3;
+    for (const auto& t : tests) s1.push_back(t["sigma1_peak"]), s3.push_back(t["sigma3_peak"]);
+    const MohrCoulomb mc = fit_mohr_coulomb(s1, s3);
+    results["mohr_coulomb"] = {{"cohesion", mc.cohesion}, {"phi_deg", mc.phi_deg}};
+  }
+  return results;
 }
 
 }  // namespace geodem

@@ -52,6 +52,12 @@ ShearEnvelope fit_shear_envelope(const std::vector<double>& sigma_n,
 // {"cohesion", "phi_deg", "residual_cohesion", "residual_phi_deg"}.
 nlohmann::json shear_envelopes(const nlohmann::json& tests);
 
+// The results of a triaxial-kind run: its preparation, its tests (and, for one test, the
+// contract's flat keys), the shear envelope of shear tests or the Mohr-Coulomb fit of several
+// triaxial tests' peaks (sigma1_peak, sigma3_peak).
+nlohmann::json lab_run_results(LabKind kind, const nlohmann::json& preparation,
+                               const nlohmann::json& tests);
+
 // One loop of a cyclic test in the shear stress tau = (sigma_a - sigma_r) / 2 and shear
 // strain gamma = eps_a - eps_r (the largest shear stress and strain of an axisymmetric, or
 // plane, state): the secant modulus G = (tau_hi - tau_lo) / (gamma_hi - gamma_lo) between

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
-#include <optional>
 #include <numbers>
 #include <stdexcept>
 
@@ -16,6 +14,7 @@
 #include "io/run_checkpoints.hpp"
 #include "io/step_loop.hpp"
 #include "lab/lab_controllers.hpp"
+#include "lab/lab_domain.hpp"
 #include "lab/lab_phases.hpp"
 #include "lab/run_element_test.hpp"
 #include "lab/soil_parameters.hpp"
@@ -23,7 +22,6 @@
 #include "lab/triaxial_sample.hpp"
 #include "lab/triaxial_test_state.hpp"
 #include "measure/measurements.hpp"
-#include "scene/scene_domain.hpp"
 #include "walls/lab_box.hpp"
 #include "world/world_state.hpp"
 
@@ -53,11 +51,8 @@ struct Lab {
   const RunOptions& opt;
   const bool root;  // writes the outputs: one process, or rank 0 of a decomposed run
   World<D> w;
-  World<D> prepared;  // the sample every test starts from
-  // Over the ranks of mpirun (docs/parallel.md): this rank's part of the sample under test
-  // and of the prepared one, and their keys and contact history in a checkpoint.
-  std::shared_ptr<SlabDomain<D>> domain, prepared_domain;
-  DomainCheckpoint<D> saved, saved_prepared;
+  World<D> prepared;    // the sample every test starts from
+  LabDomain<D> domain;  // over the ranks of mpirun (docs/parallel.md)
   LabBox<D> box;
   Progress progress;
   HistoryCsv prep_csv, history;
@@ -72,7 +67,6 @@ struct Lab {
   std::uint8_t interval_open = 0;  // a friction-reduction interval is under way
   std::uint64_t total_steps = 0;
   nlohmann::json prep = nlohmann::json::object(), tests = nlohmann::json::array();
-  std::vector<double> s1_peaks, s3_peaks;
   std::uint64_t test = 0;  // index of the confining stress under test
   Shear<D> shear;
   ElementTest<D> element;  // the loading program of an element test
@@ -108,7 +102,6 @@ struct Lab {
   void visit_state(Archive& a) {
     a(phase), a(stage_step), a(phi), a(interval_open), a(total_steps), a(test);
     archive_json(a, prep), archive_json(a, tests);
-    a(s1_peaks), a(s3_peaks);
     shear.visit(a);
     element.visit(a);
   }
@@ -122,14 +115,13 @@ struct Lab {
     runner(static_cast<std::uint64_t>(history.rows()));
     vtk.save(runner);
     const bool tests_begun = phase >= Phase::kConsolidation;
-    const std::uint8_t decomposed = domain ? 1 : 0;
-    runner(static_cast<std::uint8_t>(tests_begun)), runner(decomposed);
-    if (decomposed) saved.visit(runner);
+    runner(static_cast<std::uint8_t>(tests_begun));
+    domain.visit(runner, false);
     if (tests_begun) {
       StateWriter sample;
       save_world_state(sample, prepared);
       runner(sample.bytes());
-      if (decomposed) saved_prepared.visit(runner);
+      domain.visit(runner, true);
     }
     save_world_state(world, w);
   }
@@ -144,38 +136,14 @@ struct Lab {
                              [&](StateWriter& runner, StateWriter& world) { save(runner, world); });
       return false;
     }
-    // The ranks stop together, at a step they agree on; wall-clock checkpoints are any rank's.
-    const bool signal = total_steps % 64 == 0 && domain->any_rank(interrupt_signal() != 0);
-    const bool due = checkpoints.due(total_steps);
-    if (signal || (s.checkpoint.enabled() ? domain->any_rank(due) : due)) {
-      DomainWorldOnRank0<D> whole(w, domain.get(), saved);
-      std::optional<DomainWorldOnRank0<D>> whole_prepared;
-      if (phase >= Phase::kConsolidation)
-        whole_prepared.emplace(prepared, prepared_domain.get(), saved_prepared);
-      if (root)
-        checkpoints.write_with(total_steps, w.time, [&](StateWriter& runner, StateWriter& world) {
-          save(runner, world);
+    domain.after_step(
+        w, phase >= Phase::kConsolidation ? &prepared : nullptr, checkpoints, total_steps, [&] {
+          if (root)
+            checkpoints.write_with(
+                total_steps, w.time,
+                [&](StateWriter& runner, StateWriter& world) { save(runner, world); });
         });
-    }
-    saved = saved_prepared = DomainCheckpoint<D>{};
-    if (signal) throw Interrupted{interrupt_signal() ? interrupt_signal() : 15, checkpoints.last()};
     return false;
-  }
-
-  // Spreads the sample (and the prepared one, once made) over the ranks of mpirun; a checkpoint
-  // of a decomposed run resumed in one process goes on as a domain of one rank (the same bits).
-  void decompose(bool was_decomposed) {
-    if (!opt.decompose && !was_decomposed) return;
-    if (s.periodic)
-      throw InputError(s.file, 0, "sample.boundary",
-                       "a periodic cell is not spread over MPI ranks yet (docs/parallel.md); run "
-                       "it without mpirun");
-    const bool local = !opt.decompose;
-    domain = decompose_world(w, s.file, was_decomposed ? &saved : nullptr, local);
-    if (phase >= Phase::kConsolidation)
-      prepared_domain =
-          decompose_world(prepared, s.file, was_decomposed ? &saved_prepared : nullptr, local);
-    saved = saved_prepared = DomainCheckpoint<D>{};
   }
 
   // Steps with measurement every `every` steps; stops when `done()` holds on a
@@ -210,17 +178,8 @@ struct Lab {
                                      grain_friction_deg(),
                                      unbalanced_force_ratio(w),
                                      coordination_number(w),
-                                     radius_of_first_grain()};
+                                     radius_of_grain(w, 0)};
     if (root) prep_csv.row(row);
-  }
-  // The radius of the grain of id 0 (all grow alike: the course of the radius growth).
-  double radius_of_first_grain() const {
-    const auto& P = w.particles;
-    double r = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < P.size(); ++i)
-      if (P.id[i] == 0 && !(P.flags[i] & kGhost)) r = P.radius[i];
-    if (domain) r = domain->min_over_ranks(r);
-    return std::isfinite(r) ? r : 0.0;
   }
   bool bonds() const { return s.bonds_create != "none"; }
 
@@ -244,7 +203,7 @@ struct Lab {
     w.local_damping = s.compaction_damping;
     phase = Phase::kCompaction;
     install_controllers(false);
-    decompose(false);
+    domain.spread(w, nullptr, s, opt, false);
   }
 
   // Rebuilt from the scenario (build()), then the newest valid checkpoint's state.
@@ -253,19 +212,19 @@ struct Lab {
     StateReader in(c.runner.data(), c.runner.size());
     visit_state(in);
     std::uint64_t prep_rows = 0, history_rows = 0;
-    std::uint8_t tests_begun = 0, decomposed = 0;
+    std::uint8_t tests_begun = 0;
     double wall_before = 0.0;
     in(wall_before), in(prep_rows), in(history_rows);
     vtk.restore(in, root);
-    in(tests_begun), in(decomposed);
-    if (decomposed) saved.visit(in);
+    in(tests_begun);
+    domain.visit(in, false);
     if (tests_begun) {
       std::string sample;
       in(sample);
       prepared = w;  // the scenario's walls and materials, no controllers
       StateReader sin(sample.data(), sample.size());
       load_world_state(sin, prepared);
-      if (decomposed) saved_prepared.visit(in);
+      domain.visit(in, true);
     }
     install_controllers(true);
     StateReader win(c.world.data(), c.world.size());
@@ -276,7 +235,8 @@ struct Lab {
         history.resume_rows(opt.out_dir + "/history.csv", history_columns(), history_rows);
     }
     checkpoints.resume_clock(wall_before);
-    decompose(decomposed != 0);
+    domain.spread(w, phase >= Phase::kConsolidation ? &prepared : nullptr, s, opt,
+                  domain.decomposed);
   }
 
   // Holds at the compaction stress with a small unbalanced force (rows of `code`).
@@ -344,7 +304,7 @@ struct Lab {
     prep["steps"] = w.step;
     w.controllers.clear();
     prepared = w;
-    if (domain) prepared_domain = domain->copy(), prepared.domain = prepared_domain;
+    domain.keep_prepared(prepared);
     if (root) history.open(opt.out_dir + "/history.csv", history_columns());
     if (s.vtk) vtk.write(prepared);
     test = 0;
@@ -354,7 +314,7 @@ struct Lab {
   // Isotropic re-consolidation of the prepared sample to this test's confining stress.
   void begin_test() {
     w = prepared;
-    if (prepared_domain) domain = prepared_domain->copy(), w.domain = domain;
+    domain.start_from_prepared(w);
     w.local_damping = s.shear_damping;
     shear = Shear<D>{};
     phase = Phase::kConsolidation;
@@ -451,35 +411,11 @@ struct Lab {
   void record(double d_eps) {
     Shear<D>& h = shear;
     while (h.next_record <= h.eps) h.next_record += d_eps;
-    double lat[2] = {box.stress(w, 0), D == 3 ? box.stress(w, 1) : 0.0};
-    const double s1 = box.stress(w, kAxial);
-    const double s2 = D == 3 ? std::max(lat[0], lat[1]) : lat[0];
-    const double s3 = D == 3 ? std::min(lat[0], lat[1]) : lat[0];
-    const double ev = box.volumetric_strain(w, h.ref);
-    const double p = D == 3 ? (s1 + s2 + s3) / 3.0 : 0.5 * (s1 + s3);
-    std::vector<double> row = {
-        static_cast<double>(test), static_cast<double>(w.step), w.time, h.eps, ev, s1};
-    if (D == 3) row.push_back(s2);
-    for (double v : {s3, p, s1 - s3, porosity(), coordination_number(w), unbalanced_force_ratio(w)})
-      row.push_back(v);
-    if (bonds()) {
-      row.push_back(static_cast<double>(intact_bonds(w)));
-      row.push_back(static_cast<double>(broken_bond_count(w) - h.broken0));
-    }
-    h.p_end = p, h.q_end = s1 - s3;
-    if (s.undrained) {
-      h.u_end = Shear<D>::excess_pore_pressure(sigma3(), p, s1 - s3);
-      h.u_max = std::max(h.u_max, h.u_end);
-      row.push_back(h.u_end);
-    }
+    const auto row = triaxial_history_row(h, box, w, s, test, sigma3(), bonds());
     if (root) history.row(row);
-    h.curve.axial_strain.push_back(h.eps);
-    h.curve.volumetric_strain.push_back(ev);
-    h.curve.sigma1.push_back(s1);
-    h.curve.sigma3.push_back(s3);
     progress.update("compression " + std::to_string(test + 1) + "/" +
                         std::to_string(s.confining_stresses.size()),
-                    w.step, w.time, h.eps / s.max_axial_strain, "q " + format_sig(s1 - s3) + " Pa",
+                    w.step, w.time, h.eps / s.max_axial_strain, "q " + format_sig(h.q_end) + " Pa",
                     (static_cast<double>(test) + h.eps / s.max_axial_strain) /
                         static_cast<double>(s.confining_stresses.size()));
   }
@@ -489,8 +425,6 @@ struct Lab {
     if (s.vtk) vtk.write(w);
     if (s.kind == LabKind::kTriaxial) {
       tests.push_back(test_results(shear, s, sigma3(), w, bonds()));
-      s1_peaks.push_back(tests.back()["sigma1_peak"].get<double>());
-      s3_peaks.push_back(tests.back()["sigma3_peak"].get<double>());
     } else {
       tests.push_back(element_test_results(*this));
       const bool shear_test = s.kind == LabKind::kSimpleShear || s.kind == LabKind::kDirectShear;
@@ -534,30 +468,15 @@ template <int D>
 nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
   Lab<D> lab(s, opt);
   const std::string kind = lab_kind_name(s.kind);
-  run_lab_phases(lab, kind, s.resolved, opt);
-  nlohmann::json results;
-  results["preparation"] = lab.prep;
-  results["tests"] = lab.tests;
-  if (lab.tests.size() == 1)
-    for (auto& [k, v] : lab.tests[0].items()) results[k] = v;  // the contract's flat keys
-  if (s.kind == LabKind::kSimpleShear || s.kind == LabKind::kDirectShear)
-    results["shear_envelope"] = shear_envelopes(lab.tests);
-  else if (s.kind == LabKind::kTriaxial && s.confining_stresses.size() > 1) {
-    const MohrCoulomb mc = fit_mohr_coulomb(lab.s1_peaks, lab.s3_peaks);
-    results["mohr_coulomb"] = {{"cohesion", mc.cohesion}, {"phi_deg", mc.phi_deg}};
+  try {
+    run_lab_phases(lab, kind, s.resolved, opt);
+  } catch (const InputError& e) {  // (the decomposition's, met in a build: name the file)
+    if (!e.file().empty()) throw;
+    throw InputError(s.file, 0, "mpirun -n", e.detail());
   }
+  const nlohmann::json results = lab_run_results(s.kind, lab.prep, lab.tests);
   nlohmann::json timing = timing_json(lab.w, lab.elapsed(), lab.total_steps, opt.threads);
-  if (lab.domain) {  // the whole sample's grains and rate, rank 0's times
-    std::vector<ExactSum> owned(1);
-    owned[0].add(static_cast<double>(lab.domain->owned(lab.w)));
-    lab.domain->sum(owned);
-    const double grains = owned[0].value();
-    timing["ranks"] = lab.domain->ranks();
-    timing["particles"] = static_cast<std::uint64_t>(grains);
-    const double wall_s = timing["wall_s"].get<double>();
-    timing["particle_steps_per_s"] =
-        wall_s > 0.0 ? static_cast<double>(lab.total_steps) * grains / wall_s : 0.0;
-  }
+  if (lab.domain) lab.domain.add_timing(timing, lab.w, lab.total_steps);
   if (!opt.primary) return {{"results", results}};
   return write_run_summary(opt.out_dir, kind, "completed", s.resolved, results, timing);
 }

@@ -12,6 +12,7 @@
 #include "lab/soil_parameters.hpp"
 #include "lab/triaxial_settings.hpp"
 #include "measure/measurements.hpp"
+#include "walls/lab_box.hpp"
 #include "world/world.hpp"
 
 namespace geodem {
@@ -117,6 +118,42 @@ nlohmann::json test_results(const Shear<D>& h, const TriaxialSettings& s, double
   r["grains"] = body_count(w);
   if (!h.warning.empty()) r["warning"] = h.warning;
   return r;
+}
+
+// One row of the compression's history.csv (triaxial_history_columns) from the box and the
+// sample now; the test's curve and end values take the point too.
+template <int D>
+std::vector<double> triaxial_history_row(Shear<D>& h, const LabBox<D>& box, const World<D>& w,
+                                         const TriaxialSettings& s, std::uint64_t test,
+                                         double sigma3, bool bonds) {
+  constexpr int kAxial = D - 1;
+  const double lat[2] = {box.stress(w, 0), D == 3 ? box.stress(w, 1) : 0.0};
+  const double s1 = box.stress(w, kAxial);
+  const double s2 = D == 3 ? std::max(lat[0], lat[1]) : lat[0];
+  const double s3 = D == 3 ? std::min(lat[0], lat[1]) : lat[0];
+  const double ev = box.volumetric_strain(w, h.ref);
+  const double p = D == 3 ? (s1 + s2 + s3) / 3.0 : 0.5 * (s1 + s3);
+  const double porosity = 1.0 - solid_volume(w) / box.volume(w);
+  std::vector<double> row = {
+      static_cast<double>(test), static_cast<double>(w.step), w.time, h.eps, ev, s1};
+  if (D == 3) row.push_back(s2);
+  for (double v : {s3, p, s1 - s3, porosity, coordination_number(w), unbalanced_force_ratio(w)})
+    row.push_back(v);
+  if (bonds) {
+    row.push_back(static_cast<double>(intact_bonds(w)));
+    row.push_back(static_cast<double>(broken_bond_count(w) - h.broken0));
+  }
+  h.p_end = p, h.q_end = s1 - s3;
+  if (s.undrained) {
+    h.u_end = Shear<D>::excess_pore_pressure(sigma3, p, s1 - s3);
+    h.u_max = std::max(h.u_max, h.u_end);
+    row.push_back(h.u_end);
+  }
+  h.curve.axial_strain.push_back(h.eps);
+  h.curve.volumetric_strain.push_back(ev);
+  h.curve.sigma1.push_back(s1);
+  h.curve.sigma3.push_back(s3);
+  return row;
 }
 
 }  // namespace geodem

@@ -313,6 +313,18 @@ std::uint64_t broken_bond_count(const World<D>& world) {
   return static_cast<std::uint64_t>(n[0].value());
 }
 
+template <int D>
+double radius_of_grain(const World<D>& world, std::uint32_t id) {
+  const auto& P = world.particles;
+  double r = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (P.id[i] == id && !(P.flags[i] & kGhost)) r = P.radius[i];
+  if (world.domain) r = world.domain->min_over_ranks(r);
+  return std::isfinite(r) ? r : 0.0;
+}
+
+template double radius_of_grain<2>(const World<2>&, std::uint32_t);
+template double radius_of_grain<3>(const World<3>&, std::uint32_t);
 template double kinetic_energy<2>(const World<2>&);
 template double kinetic_energy<3>(const World<3>&);
 template double gravity_energy<2>(const World<2>&);

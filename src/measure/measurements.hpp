@@ -41,6 +41,11 @@ std::size_t intact_bonds(const World<D>& world);
 template <int D>
 std::uint64_t broken_bond_count(const World<D>& world);
 
+// The radius of the grain with this id (0 when there is none; in a decomposed world its
+// owner's, on every rank).
+template <int D>
+double radius_of_grain(const World<D>& world, std::uint32_t id);
+
 // Number of bodies (free grains and clumps; fixed grains included); in a decomposed world
 // (docs/parallel.md) the whole domain's, every rank's own grains and clumps counted.
 template <int D>

@@ -263,8 +263,8 @@ void step(World<D>& world) {
   {
     ScopedStage<D> t(world, Stage::kNeighbours);
     // (a decomposed world's check is itself taken over the ranks: list_expired)
-    const bool rebuild = world.domain ? list_expired(world)
-                                      : world.rebuild_needed || list_expired(world);
+    const bool rebuild =
+        world.domain ? list_expired(world) : world.rebuild_needed || list_expired(world);
     if (rebuild) {
       if (world.domain) world.domain->before_build(world);
       // A build is a run's peak of memory (the old rows and the new ones are both resident).

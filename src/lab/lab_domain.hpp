@@ -1,0 +1,101 @@
+// A lab test of the triaxial kind spread over the ranks of mpirun (docs/parallel.md): the sample
+// under test and the prepared sample every test starts from are each decomposed
+// (scene/scene_domain.hpp), a checkpoint gathers both whole to rank 0, and a test begins from a
+// copy of the prepared sample's domain as from a copy of its world.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "base/error.hpp"
+#include "io/interrupt.hpp"
+#include "io/run_checkpoints.hpp"
+#include "lab/triaxial_settings.hpp"
+#include "scene/scene_domain.hpp"
+#include "study/study_comm.hpp"
+
+namespace geodem {
+
+template <int D>
+struct LabDomain {
+  // This rank's part of the sample under test and of the prepared one; their keys and
+  // contact history between a checkpoint's reading and the decomposition.
+  std::shared_ptr<SlabDomain<D>> current, prepared;
+  DomainCheckpoint<D> saved, saved_prepared;
+
+  explicit operator bool() const { return current != nullptr; }
+
+  // Spreads `w` (and `prep`, when given) over the ranks of mpirun, from a checkpoint's keys
+  // and history when `resumed`; a decomposed run's checkpoint resumed in one process goes on as
+  // a domain of one rank (the same bits). A periodic cell is refused on several ranks.
+  void spread(World<D>& w, World<D>* prep, const TriaxialSettings& s, const RunOptions& opt,
+              bool resumed) {
+    if (!opt.decompose && !resumed) return;
+    if (s.periodic) {  // (mpirun -n 1: one process)
+      if (comm::size() == 1 && !resumed) return;
+      throw InputError(s.file, 0, "sample.boundary",
+                       "a periodic cell is not spread over MPI ranks yet (docs/parallel.md); run "
+                       "it without mpirun");
+    }
+    const bool local = !opt.decompose;
+    current = decompose_world(w, s.file, resumed ? &saved : nullptr, local);
+    if (prep) prepared = decompose_world(*prep, s.file, resumed ? &saved_prepared : nullptr, local);
+    saved = saved_prepared = DomainCheckpoint<D>{};
+  }
+  // The prepared sample was copied from the sample under test: its domain too.
+  void keep_prepared(World<D>& prep) {
+    if (current) prepared = current->copy(), prep.domain = prepared;
+  }
+  // A test starts from a copy of the prepared sample: its domain too.
+  void start_from_prepared(World<D>& w) {
+    if (prepared) current = prepared->copy(), w.domain = current;
+  }
+
+  // The runner's part of a checkpoint: whether decomposed, then the saved keys and history.
+  template <class Archive>
+  void visit(Archive& a, bool for_prepared) {
+    if (for_prepared) {
+      if (decomposed) saved_prepared.visit(a);
+      return;
+    }
+    if constexpr (!Archive::kLoading) decomposed = current ? 1 : 0;
+    a(decomposed);
+    if (decomposed) saved.visit(a);
+  }
+  std::uint8_t decomposed = 0;  // the checkpoint written or read is a decomposed run's
+
+  // After a whole step of a decomposed run: the ranks stop together on a signal, at a step
+  // they agree on, and a checkpoint is written when due (wall-clock ones: any rank's). While
+  // `write` runs (on every rank; rank 0 writes the file), rank 0's worlds hold the whole
+  // samples. Throws Interrupted on a signal.
+  template <class Write>
+  void after_step(World<D>& w, World<D>* prep, RunCheckpoints& checkpoints,
+                  std::uint64_t total_steps, Write&& write) {
+    const bool signal = total_steps % 64 == 0 && current->any_rank(interrupt_signal() != 0);
+    const bool due = checkpoints.due(total_steps);
+    if (signal || (checkpoints.spec().enabled() ? current->any_rank(due) : due)) {
+      DomainWorldOnRank0<D> whole(w, current.get(), saved);
+      std::optional<DomainWorldOnRank0<D>> whole_prepared;
+      if (prep) whole_prepared.emplace(*prep, prepared.get(), saved_prepared);
+      write();
+    }
+    saved = saved_prepared = DomainCheckpoint<D>{};
+    if (signal) throw Interrupted{interrupt_signal() ? interrupt_signal() : 15, checkpoints.last()};
+  }
+
+  // The timing of summary.json: the whole sample's grains and rate (rank 0's times).
+  void add_timing(nlohmann::json& timing, const World<D>& w, std::uint64_t steps) const {
+    std::vector<ExactSum> owned(1);
+    owned[0].add(static_cast<double>(current->owned(w)));
+    current->sum(owned);
+    const double grains = owned[0].value(), wall_s = timing["wall_s"].get<double>();
+    timing["ranks"] = current->ranks();
+    timing["particles"] = static_cast<std::uint64_t>(grains);
+    timing["particle_steps_per_s"] =
+        wall_s > 0.0 ? static_cast<double>(steps) * grains / wall_s : 0.0;
+  }
+};
+
+}  // namespace geodem

@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""`mpirun -n K geodem run triaxial.toml` spreads one triaxial test over K ranks with the same
+bits for any K: a 2D test of bonded pair clumps with rolling friction (radius growth with the
+ghost width following it, friction reduction, bonds made after the compaction, two
+compressions each started from the prepared sample, VTK frames in pieces) and a 3D test of
+spheres on 1, 2 (two threads each) and 4 ranks (oversubscribed) write the same history.csv,
+preparation.csv and results. Killed (SIGKILL after periodic checkpoints, or SIGTERM) and resumed
+on another number of ranks, or by one process without mpirun, they write the files of the
+uninterrupted run. What is not spread yet is refused with exit code 2: an element test, a
+periodic cell on several ranks, and slabs the grown grains make thinner than the ghost width.
+
+    test_triaxial_ranks.py PATH/TO/geodem
+Exit 77 (skipped) without mpirun or without MPI in geodem.
+"""
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+from test_scene_ranks import check, failures, history, pieces
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def outputs(out):
+    """What two runs of one test must share."""
+    return {"history": history(os.path.join(out, "history.csv")),
+            "preparation": open(os.path.join(out, "preparation.csv")).read(),
+            "results": json.load(open(os.path.join(out, "summary.json")))["results"]}
+
+
+def main() -> int:
+    geodem = sys.argv[1]
+    mpirun = shutil.which("mpirun")
+    version = subprocess.run([geodem, "--version"], capture_output=True, text=True).stdout
+    if not mpirun or "MPI" not in version:
+        print("no mpirun or geodem without MPI: skipped")
+        return 77
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1",
+               OMPI_MCA_mpi_yield_when_idle="1")
+
+    def run(ranks, scenario, out, *sets, threads=1):
+        launcher = [mpirun, "-n", str(ranks)] if ranks else []
+        args = launcher + [geodem, "run", scenario, "--out", out, "--quiet", "--threads",
+                           str(threads)]
+        for s in sets:
+            args += ["--set", s]
+        return subprocess.run(args, env=env, text=True, capture_output=True, timeout=600)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        refs = {}
+        for name in ("triaxial2d.toml", "triaxial3d.toml"):
+            scenario = os.path.join(HERE, name)
+            for ranks in (1, 2, 4):
+                out = os.path.join(tmp, f"{name}.{ranks}")
+                r = run(ranks, scenario, out, threads=2 if ranks == 2 else 1)
+                if r.returncode != 0:
+                    check(False, f"{name} on {ranks} ranks ran: {r.stdout}{r.stderr}")
+                    continue
+                got = outputs(out)
+                res = got["results"]
+                timing = json.load(open(os.path.join(out, "summary.json")))["timing"]
+                grains = 600 if name == "triaxial2d.toml" else 400
+                # (the 3D test stops at 1 % axial strain, before its peak)
+                least = 15.0 if name == "triaxial2d.toml" else 5.0
+                check(timing["ranks"] == ranks and timing["particles"] == grains and
+                      len(res["tests"]) == (2 if name == "triaxial2d.toml" else 1) and
+                      all(t["phi_peak_deg"] > least for t in res["tests"]),
+                      f"{name} on {ranks} ranks: {len(res['tests'])} tests, peak friction "
+                      f"angles {[round(t['phi_peak_deg'], 2) for t in res['tests']]} deg, "
+                      f"{timing['particles']} grains")
+                if name == "triaxial2d.toml":
+                    count, ids = pieces(out)
+                    check(res["preparation"]["bonds"] > 0 and
+                          res["preparation"]["compaction_friction_deg"] < 25.0 and
+                          count == ranks and sorted(ids) == list(range(grains)),
+                          f"{name} on {ranks} ranks: {res['preparation']['bonds']} bonds made, "
+                          f"friction reduced to {res['preparation']['compaction_friction_deg']:.1f}"
+                          f" deg, the last frame in {count} pieces holding every member once")
+                if ranks == 1:
+                    refs[name] = got
+                    continue
+                for part in got:
+                    check(got[part] == refs[name][part],
+                          f"{name}: {part} on {ranks} ranks the same as on 1 rank")
+
+        # Killed, then resumed on another number of ranks: the files of the uninterrupted run.
+        # SIGKILL leaves the last periodic checkpoint (here after the prepared sample is kept:
+        # both samples' domains are in it); SIGTERM stops every rank at a step they agree on.
+        for name, first, then, sig, at in (("triaxial2d.toml", 2, 4, signal.SIGKILL, 70000),
+                                           ("triaxial3d.toml", 4, 0, signal.SIGTERM, 15000)):
+            out = os.path.join(tmp, f"{name}.killed")
+            scenario = os.path.join(HERE, name)
+            args = [mpirun, "-n", str(first), geodem, "run", scenario, "--out", out, "--quiet",
+                    "--set", "checkpoint.every_steps=5000"]
+            p = subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL,
+                                 stderr=subprocess.DEVNULL)
+            ckdir = os.path.join(out, "checkpoint")
+
+            def newest():  # the step of the newest checkpoint written
+                names = os.listdir(ckdir) if os.path.isdir(ckdir) else []
+                return max([int(n[11:23]) for n in names if n.endswith(".bin")], default=0)
+            while p.poll() is None and newest() < at:
+                time.sleep(0.005)
+            if p.poll() is not None:
+                check(False, f"{name} on {first} ranks ended before it was killed")
+                continue
+            for pid in os.listdir("/proc"):  # the ranks and mpirun of this run
+                try:
+                    if pid.isdigit() and out.encode() in open(f"/proc/{pid}/cmdline", "rb").read():
+                        os.kill(int(pid), sig)
+                except OSError:
+                    pass
+            p.wait()
+            ck = sorted(os.listdir(ckdir))
+            launcher = [mpirun, "-n", str(then)] if then else []
+            r = subprocess.run(launcher + [geodem, "run", scenario, "--resume", out, "--quiet",
+                                           "--set", "checkpoint.every_steps=5000"],
+                               env=env, text=True, capture_output=True, timeout=600)
+            same = r.returncode == 0 and outputs(out) == refs.get(name)
+            check(same, f"{name}: {sig.name} on {first} ranks (checkpoints {ck[-1:]}), resumed "
+                        f"on {then or 'one process without mpirun'}: history, preparation and "
+                        f"results of the uninterrupted run {'' if r.returncode == 0 else r.stderr}")
+
+        # What is not spread yet: exit 2 with a message naming the file and the key.
+        narrow = os.path.join(tmp, "narrow.toml")
+        with open(os.path.join(HERE, "triaxial2d.toml")) as f:
+            text = f.read().replace("box = [0.8, 0.8]", "box = [0.4, 0.8]") \
+                .replace("count = 300", "count = 150")
+        with open(narrow, "w") as f:
+            f.write(text)
+        periodic = os.path.join(tmp, "periodic.toml")
+        with open(periodic, "w") as f:
+            f.write(text.replace("count = 150", 'count = 150\nboundary = "periodic"'))
+        oedometer = os.path.join(tmp, "oedometer.toml")
+        with open(oedometer, "w") as f:
+            f.write(text.replace('kind = "triaxial"', 'kind = "oedometer"')
+                    .split("[shear]")[0] + "[loading]\nstresses = [2e5, 1e5]\n[output]\nplots = false\n")
+        for scenario, ranks, words in ((narrow, 4, ["narrow.toml", "mpirun -n", "too thin"]),
+                                       (periodic, 2, ["periodic.toml", "sample.boundary"]),
+                                       (oedometer, 2, ["oedometer.toml", "without mpirun"])):
+            r = run(ranks, scenario, os.path.join(tmp, os.path.basename(scenario) + ".out"))
+            check(r.returncode == 2 and all(w in r.stderr for w in words) and
+                  r.stderr.count("error:") == 1,
+                  f"{os.path.basename(scenario)} on {ranks} ranks refused: exit {r.returncode}, "
+                  f"{r.stderr.strip()}")
+    print(f"{len(failures)} failures" if failures else "all passed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
