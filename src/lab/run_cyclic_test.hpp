@@ -110,7 +110,7 @@ void run_cycles(Lab& lab) {
           e.loop.add(tau, gamma);
           if (lab.w.measure_this_step && e.path >= e.next_record) {
             while (e.next_record <= e.path) e.next_record += every;
-            lab.history.row({static_cast<double>(e.stage), static_cast<double>((e.turn + 1) / 2),
+            lab.history_row({static_cast<double>(e.stage), static_cast<double>((e.turn + 1) / 2),
                              static_cast<double>(lab.w.step), lab.w.time, eps, eps - gamma_now,
                              gamma_now, sa, sl, sa - sl, (sa + (D - 1) * sl) / D, void_ratio(lab),
                              unbalanced_force_ratio(lab.w)});

@@ -83,7 +83,7 @@ void stress_step_row(Lab& lab, double unbalanced, bool at_rest, double target) {
   const double ea = lab.box.strain(lab.w, D - 1, e.ref);
   const double ev = lab.box.volumetric_strain(lab.w, e.ref);
   const double void_r = void_ratio(lab);
-  lab.history.row({static_cast<double>(e.stage), static_cast<double>(lab.w.step), lab.w.time,
+  lab.history_row({static_cast<double>(e.stage), static_cast<double>(lab.w.step), lab.w.time,
                    target, sa, sl, (sa + (D - 1) * sl) / D, sa - sl, ea, ev, void_r,
                    coordination_number(lab.w), unbalanced, at_rest ? 1.0 : 0.0});
   if (!at_rest) return;
@@ -204,7 +204,7 @@ void simple_shear_row(Lab& lab) {
       std::asin(std::clamp((s1 - s3) / (s1 + s3), -1.0, 1.0)) * 180.0 / std::numbers::pi;
   const double en = lab.box.strain(lab.w, n, e.ref), ev = lab.box.volumetric_strain(lab.w, e.ref);
   const double void_r = void_ratio(lab);
-  lab.history.row({static_cast<double>(lab.test), static_cast<double>(lab.w.step), lab.w.time,
+  lab.history_row({static_cast<double>(lab.test), static_cast<double>(lab.w.step), lab.w.time,
                    gamma, en, ev, sn, tau, tau / sn, s1, s3, phi, sigma.trace() / D, void_r,
                    coordination_number(lab.w), unbalanced_force_ratio(lab.w)});
   add_shear_point(lab, "simple shear ", gamma, lab.s.element.max_shear_strain, tau, sn, en, phi,
@@ -236,9 +236,16 @@ std::size_t grains_outside_shear_box(const Lab& lab) {
   const double top = lab.w.walls[lab.box.hi[v]].point[v], split = lab.element.split;
   std::size_t out = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
+    if (P.flags[i] & kGhost) continue;  // (counted by its owner)
     const double x = P.pos[i].x(), z = P.pos[i][v], shift = z > split ? u : 0.0;
     const bool off_width = Lab::kDim == 3 && (P.pos[i][1] < 0.0 || P.pos[i][1] > width);
     if (x < shift || x > length + shift || z < 0.0 || z > top || off_width) ++out;
+  }
+  if (lab.w.domain) {
+    std::vector<ExactSum> n(1);
+    n[0].add(static_cast<double>(out));
+    lab.w.domain->sum(n);
+    out = static_cast<std::size_t>(n[0].value());
   }
   return out;
 }
@@ -256,7 +263,7 @@ void direct_shear_row(Lab& lab) {
   const double sn = lab.w.walls[lab.box.hi[v]].normal_stress();
   const double rise = lab.w.walls[lab.box.hi[v]].point[v] - e.plate0;
   const double void_r = void_ratio(lab);
-  lab.history.row({static_cast<double>(lab.test), static_cast<double>(lab.w.step), lab.w.time, u,
+  lab.history_row({static_cast<double>(lab.test), static_cast<double>(lab.w.step), lab.w.time, u,
                    tau, sn, tau / sn, rise, void_r, coordination_number(lab.w),
                    unbalanced_force_ratio(lab.w)});
   add_shear_point(lab, "direct shear ", u, lab.s.element.max_displacement, tau, sn, -rise,

@@ -182,6 +182,10 @@ struct Lab {
     if (root) prep_csv.row(row);
   }
   bool bonds() const { return s.bonds_create != "none"; }
+  // A row of history.csv (rank 0 of a decomposed run writes it).
+  void history_row(const std::vector<double>& row) {
+    if (root) history.row(row);
+  }
 
   void build() { box = build_triaxial_sample(w, s, opt.threads); }
   std::vector<std::string> history_columns() const {
@@ -412,7 +416,7 @@ struct Lab {
     Shear<D>& h = shear;
     while (h.next_record <= h.eps) h.next_record += d_eps;
     const auto row = triaxial_history_row(h, box, w, s, test, sigma3(), bonds());
-    if (root) history.row(row);
+    history_row(row);
     progress.update("compression " + std::to_string(test + 1) + "/" +
                         std::to_string(s.confining_stresses.size()),
                     w.step, w.time, h.eps / s.max_axial_strain, "q " + format_sig(h.q_end) + " Pa",

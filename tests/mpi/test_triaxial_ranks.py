@@ -6,8 +6,10 @@ compressions each started from the prepared sample, VTK frames in pieces) and a 
 spheres on 1, 2 (two threads each) and 4 ranks (oversubscribed) write the same history.csv,
 preparation.csv and results. Killed (SIGKILL after periodic checkpoints, or SIGTERM) and resumed
 on another number of ranks, or by one process without mpirun, they write the files of the
-uninterrupted run. What is not spread yet is refused with exit code 2: an element test, a
-periodic cell on several ranks, and slabs the grown grains make thinner than the ghost width.
+uninterrupted run. The element tests with walls (oedometer, isotropic, cyclic, direct shear)
+give the same bits on 1 and 2 ranks. What is not spread yet is refused with exit code 2: the
+simple shear (always periodic), a periodic cell on several ranks, and slabs the grown grains
+make thinner than the ghost width.
 
     test_triaxial_ranks.py PATH/TO/geodem
 Exit 77 (skipped) without mpirun or without MPI in geodem.
@@ -89,6 +91,36 @@ def main() -> int:
                     check(got[part] == refs[name][part],
                           f"{name}: {part} on {ranks} ranks the same as on 1 rank")
 
+        # The element tests with walls, from the 2D sample: 1 and 2 ranks the same bits.
+        with open(os.path.join(HERE, "triaxial2d.toml")) as f:
+            sample = f.read().split("[shear]")[0]
+        elements = {
+            "oedometer": "[loading]\nstresses = [2e5, 1e5]\n",
+            "isotropic": "[loading]\nstresses = [2e5, 1e5]\n",
+            "cyclic_triaxial": "[loading]\namplitudes = [1e-4, 1e-3]\ncycles = 1\n"
+                               "steps_per_cycle = 400\n",
+            "direct_shear": "[loading]\nnormal_stress = [1e5]\nmax_displacement = 0.004\n"}
+        for kind, loading in elements.items():
+            scenario = os.path.join(tmp, kind + ".toml")
+            text = sample.replace('kind = "triaxial"', f'kind = "{kind}"')
+            if kind == "direct_shear":  # (a box longer than high)
+                text = text.replace("box = [0.8, 0.8]", "box = [1.2, 0.6]")
+            with open(scenario, "w") as f:
+                f.write(text + loading + "[output]\nplots = false\n")
+            got = []
+            for ranks in (1, 2):
+                out = os.path.join(tmp, f"{kind}.{ranks}")
+                r = run(ranks, scenario, out)
+                if r.returncode != 0:
+                    check(False, f"{kind} on {ranks} ranks ran: {r.stdout}{r.stderr}")
+                    break
+                got.append(outputs(out))
+            if len(got) == 2:
+                rows = len(got[0]["history"]) - 1
+                check(rows >= 10 and got[0] == got[1],
+                      f"{kind}: history ({rows} rows), preparation and results on 2 ranks the "
+                      f"same as on 1 rank")
+
         # Killed, then resumed on another number of ranks: the files of the uninterrupted run.
         # SIGKILL leaves the last periodic checkpoint (here after the prepared sample is kept:
         # both samples' domains are in it); SIGTERM stops every rank at a step they agree on.
@@ -137,13 +169,15 @@ def main() -> int:
         periodic = os.path.join(tmp, "periodic.toml")
         with open(periodic, "w") as f:
             f.write(text.replace("count = 150", 'count = 150\nboundary = "periodic"'))
-        oedometer = os.path.join(tmp, "oedometer.toml")
-        with open(oedometer, "w") as f:
-            f.write(text.replace('kind = "triaxial"', 'kind = "oedometer"')
-                    .split("[shear]")[0] + "[loading]\nstresses = [2e5, 1e5]\n[output]\nplots = false\n")
+        simple = os.path.join(tmp, "simple_shear.toml")  # (always in a periodic cell)
+        with open(simple, "w") as f:
+            f.write(text.replace('kind = "triaxial"', 'kind = "simple_shear"')
+                    .replace("count = 150", 'count = 150\nboundary = "periodic"')
+                    .split("[shear]")[0] + "[loading]\nnormal_stress = [1e5]\n"
+                    "max_shear_strain = 0.01\n[output]\nplots = false\n")
         for scenario, ranks, words in ((narrow, 4, ["narrow.toml", "mpirun -n", "too thin"]),
                                        (periodic, 2, ["periodic.toml", "sample.boundary"]),
-                                       (oedometer, 2, ["oedometer.toml", "without mpirun"])):
+                                       (simple, 2, ["simple_shear.toml", "without mpirun"])):
             r = run(ranks, scenario, os.path.join(tmp, os.path.basename(scenario) + ".out"))
             check(r.returncode == 2 and all(w in r.stderr for w in words) and
                   r.stderr.count("error:") == 1,
