@@ -54,7 +54,7 @@ int run_main(int argc, char** argv) {
 
   std::string scenario, out_dir = "out", plot_dir, resume_dir, run_kind;
   std::vector<std::string> overrides;
-  int threads = geodem::default_threads();
+  int threads = geodem::default_threads(), ranks_per_run = 1;
   bool quiet = false, overwrite = false;
 
   auto* run = app.add_subcommand("run", "run a scenario");
@@ -65,6 +65,11 @@ int run_main(int argc, char** argv) {
                   "threads of the step; studies: runs side by side on each MPI rank "
                   "(default: GEODEM_THREADS, else OMP_NUM_THREADS, else 1)")
       ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  run->add_option("--ranks-per-run", ranks_per_run,
+                  "studies under mpirun: each run spread over this many ranks (a group; the "
+                  "ranks must be a multiple of it)")
+      ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   run->add_flag("--quiet", quiet, "no progress display");
   run->add_flag("--overwrite", overwrite,
@@ -127,6 +132,19 @@ int run_main(int argc, char** argv) {
       opt.resume = true;
     }
     const bool shared = kind.shares_ranks(l.root);
+    if (ranks_per_run > 1) {
+      if (!shared)
+        throw geodem::InputError("", 0, "--ranks-per-run",
+                                 "groups of ranks run the runs of a study (series, rate_study, "
+                                 "calibrate); a scene or a lab test spreads over all the ranks "
+                                 "of mpirun: leave --ranks-per-run out");
+      if (geodem::comm::size() % ranks_per_run != 0)
+        throw geodem::InputError("", 0, "--ranks-per-run",
+                                 "the ranks of mpirun (" + std::to_string(geodem::comm::size()) +
+                                     ") must be a multiple of the ranks per run (" +
+                                     std::to_string(ranks_per_run) + ")");
+      geodem::comm::split_into_groups(ranks_per_run);
+    }
     // Under mpirun a study shares its runs across the ranks; a scene spreads its world over them
     // (with -n 1 too, so that 1, 2 and 4 ranks give the same bits).
     opt.decompose = geodem::comm::active() && !shared && kind.decomposes;

@@ -5,9 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#ifdef GEODEM_HAVE_MPI
-#include <mpi.h>
-#endif
+#include "study/group_comm.hpp"
 
 namespace geodem {
 
@@ -23,9 +21,11 @@ int count_of(std::size_t bytes) {
 
 class MpiDomainComm final : public DomainComm {
  public:
-  MpiDomainComm() {
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  // The ranks of this rank's group of a study's runs (all of them but in a study split with
+  // --ranks-per-run).
+  MpiDomainComm() : comm_(comm::group_communicator()) {
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &size_);
     lower_ = rank_ > 0 ? rank_ - 1 : MPI_PROC_NULL;
     upper_ = rank_ + 1 < size_ ? rank_ + 1 : MPI_PROC_NULL;
   }
@@ -36,25 +36,25 @@ class MpiDomainComm final : public DomainComm {
                 Bytes& from_upper) override {
     // Sizes first (upwards, then downwards), then the bytes.
     std::uint64_t up_n = to_upper.size(), down_n = to_lower.size(), from_lo = 0, from_up = 0;
-    MPI_Sendrecv(&up_n, 1, MPI_UINT64_T, upper_, 0, &from_lo, 1, MPI_UINT64_T, lower_, 0,
-                 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    MPI_Sendrecv(&down_n, 1, MPI_UINT64_T, lower_, 1, &from_up, 1, MPI_UINT64_T, upper_, 1,
-                 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    MPI_Sendrecv(&up_n, 1, MPI_UINT64_T, upper_, 0, &from_lo, 1, MPI_UINT64_T, lower_, 0, comm_,
+                 MPI_STATUS_IGNORE);
+    MPI_Sendrecv(&down_n, 1, MPI_UINT64_T, lower_, 1, &from_up, 1, MPI_UINT64_T, upper_, 1, comm_,
+                 MPI_STATUS_IGNORE);
     from_lower.resize(from_lo);
     from_upper.resize(from_up);
     MPI_Sendrecv(to_upper.data(), count_of(up_n), MPI_BYTE, upper_, 2, from_lower.data(),
-                 count_of(from_lo), MPI_BYTE, lower_, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+                 count_of(from_lo), MPI_BYTE, lower_, 2, comm_, MPI_STATUS_IGNORE);
     MPI_Sendrecv(to_lower.data(), count_of(down_n), MPI_BYTE, lower_, 3, from_upper.data(),
-                 count_of(from_up), MPI_BYTE, upper_, 3, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+                 count_of(from_up), MPI_BYTE, upper_, 3, comm_, MPI_STATUS_IGNORE);
   }
   double max(double here) override {
     double out = here;
-    MPI_Allreduce(&here, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    MPI_Allreduce(&here, &out, 1, MPI_DOUBLE, MPI_MAX, comm_);
     return out;
   }
   double min(double here) override {
     double out = here;
-    MPI_Allreduce(&here, &out, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+    MPI_Allreduce(&here, &out, 1, MPI_DOUBLE, MPI_MIN, comm_);
     return out;
   }
   void sum(std::vector<ExactSum>& sums) override {
@@ -66,8 +66,7 @@ class MpiDomainComm final : public DomainComm {
       sums[k].normalise();
       for (std::size_t d = 0; d < width; ++d) limbs[k * width + d] = sums[k].raw()[d];
     }
-    MPI_Allreduce(limbs.data(), total.data(), count_of(limbs.size()), MPI_INT64_T, MPI_SUM,
-                  MPI_COMM_WORLD);
+    MPI_Allreduce(limbs.data(), total.data(), count_of(limbs.size()), MPI_INT64_T, MPI_SUM, comm_);
     for (std::size_t k = 0; k < sums.size(); ++k) {
       for (std::size_t d = 0; d < width; ++d) sums[k].raw()[d] = total[k * width + d];
       sums[k].normalise();
@@ -76,7 +75,7 @@ class MpiDomainComm final : public DomainComm {
   Bytes gather(const Bytes& here) override {
     const int n = count_of(here.size());
     std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(counts.size(), 0);
-    MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
     std::size_t total = 0;
     for (std::size_t r = 0; r < counts.size() && rank_ == 0; ++r) {
       offsets[r] = count_of(total);
@@ -84,13 +83,13 @@ class MpiDomainComm final : public DomainComm {
     }
     Bytes out(total);
     MPI_Gatherv(here.data(), n, MPI_BYTE, out.data(), counts.data(), offsets.data(), MPI_BYTE, 0,
-                MPI_COMM_WORLD);
+                comm_);
     return out;
   }
   Bytes all_gather(const Bytes& here) override {
     const int n = count_of(here.size());
     std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(counts.size(), 0);
-    MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
     std::size_t total = 0;
     for (std::size_t r = 0; r < counts.size(); ++r) {
       offsets[r] = count_of(total);
@@ -98,11 +97,12 @@ class MpiDomainComm final : public DomainComm {
     }
     Bytes out(total);
     MPI_Allgatherv(here.data(), n, MPI_BYTE, out.data(), counts.data(), offsets.data(), MPI_BYTE,
-                   MPI_COMM_WORLD);
+                   comm_);
     return out;
   }
 
  private:
+  MPI_Comm comm_;
   int rank_ = 0, size_ = 1, lower_ = 0, upper_ = 0;
   std::vector<std::int64_t> limbs_, total_;  // kept: a step's reduction allocates nothing
 };

@@ -1,5 +1,6 @@
 // The messages of a decomposed domain (domain/domain_comm.hpp) over MPI: the ranks of
-// MPI_COMM_WORLD in order are the slabs in order.
+// MPI_COMM_WORLD (of this rank's group, when a study runs its runs on groups of ranks) in
+// order are the slabs in order.
 #pragma once
 
 #include <memory>

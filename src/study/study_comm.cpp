@@ -3,15 +3,17 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#ifdef GEODEM_HAVE_MPI
-#include <mpi.h>
-#endif
+#include "study/group_comm.hpp"
 
 namespace geodem::comm {
 
 namespace {
 bool g_active = false;
 int g_rank = 0, g_size = 1;
+int g_group_size = 1;  // ranks per group of a study's runs
+#ifdef GEODEM_HAVE_MPI
+MPI_Comm g_group = MPI_COMM_NULL;  // (MPI_COMM_WORLD until a split)
+#endif
 
 // Whether an MPI launcher (Open MPI, MPICH/Hydra) started the process, with -n 1 too: a scene
 // is then decomposed over the ranks, and one rank must give the bits of several.
@@ -42,6 +44,7 @@ void init(int* argc, char*** argv) {
 
 void finalize() {
 #ifdef GEODEM_HAVE_MPI
+  if (g_group != MPI_COMM_NULL) MPI_Comm_free(&g_group);
   if (g_active) MPI_Finalize();
 #endif
   g_active = false;
@@ -88,5 +91,33 @@ std::vector<std::string> all_gather(const std::string& mine) {
   return {mine};
 #endif
 }
+
+void split_into_groups(int ranks_per_group) {
+  if (ranks_per_group < 1 || g_size % ranks_per_group != 0)
+    throw std::runtime_error("ranks per group must divide the ranks");
+  g_group_size = ranks_per_group;
+#ifdef GEODEM_HAVE_MPI
+  if (g_active && ranks_per_group > 1)
+    MPI_Comm_split(MPI_COMM_WORLD, g_rank / ranks_per_group, g_rank, &g_group);
+#endif
+}
+int group() {
+  return g_rank / g_group_size;
+}
+int groups() {
+  return g_size / g_group_size;
+}
+int group_rank() {
+  return g_rank % g_group_size;
+}
+int group_size() {
+  return g_group_size;
+}
+
+#ifdef GEODEM_HAVE_MPI
+MPI_Comm group_communicator() {
+  return g_group != MPI_COMM_NULL ? g_group : MPI_COMM_WORLD;
+}
+#endif
 
 }  // namespace geodem::comm

@@ -20,4 +20,13 @@ int size();  // 1 without MPI
 // Every rank passes its part; every rank receives all parts, in rank order.
 std::vector<std::string> all_gather(const std::string& mine);
 
+// A study's runs on groups of ranks (`--ranks-per-run R`): the ranks split into size() / R
+// groups of R consecutive ranks; each group takes its share of the runs and spreads each run
+// over its ranks (docs/parallel.md). Without a split there is one rank a group.
+void split_into_groups(int ranks_per_group);  // every rank calls it; size() % R == 0
+int group();                                  // this rank's group
+int groups();                                 // how many
+int group_rank();                             // this rank within its group
+int group_size();                             // ranks per group
+
 }  // namespace geodem::comm

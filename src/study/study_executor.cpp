@@ -72,6 +72,7 @@ nlohmann::json run_or_resume(const Settings& settings, RunOptions ro, Run run) {
 struct CheckedRun {
   nlohmann::json resolved;
   std::function<nlohmann::json(const RunOptions&)> run;
+  bool spreads = false;  // may run over a group of ranks (a triaxial-kind run with walls)
 };
 
 CheckedRun check_run(const toml::table& scenario, const std::string& file) {
@@ -85,7 +86,8 @@ CheckedRun check_run(const toml::table& scenario, const std::string& file) {
     return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_pullout); }};
   }
   auto s = std::make_shared<TriaxialSettings>(read_triaxial(scenario, file));
-  return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_triaxial); }};
+  return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_triaxial); },
+          !s->periodic};
 }
 
 std::string format_duration(double s) {
@@ -157,19 +159,20 @@ class StudyProgress {
   std::mutex m_;
 };
 
-// Largest runs first, each to the least loaded rank: the same share on every rank.
+// Largest runs first, each to the least loaded rank (group of ranks with --ranks-per-run): the
+// same share on every rank of a group.
 std::vector<std::size_t> my_share(const std::vector<StudyRun>& runs) {
   std::vector<std::size_t> order(runs.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
-  std::vector<double> load(static_cast<std::size_t>(comm::size()), 0.0);
+  std::vector<double> load(static_cast<std::size_t>(comm::groups()), 0.0);
   std::vector<std::size_t> mine;
   for (std::size_t i : order) {
     const auto r =
         static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
     load[r] += runs[i].cost;
-    if (static_cast<int>(r) == comm::rank()) mine.push_back(i);
+    if (static_cast<int>(r) == comm::group()) mine.push_back(i);
   }
   return mine;
 }
@@ -193,7 +196,15 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
   std::vector<CheckedRun> settings;
   settings.reserve(runs.size());
   for (const auto& r : runs) settings.push_back(check_run(r.scenario, opt_.file));
-
+  // A group of ranks runs its runs one at a time, each spread over the group's ranks (and
+  // `workers` threads in each); the group's first rank writes the run's files.
+  const bool grouped = comm::group_size() > 1;
+  for (const auto& c : settings)
+    if (grouped && !c.spreads)
+      throw InputError(opt_.file, 0, "--ranks-per-run",
+                       "the runs of this study (pull-out, interface shear or a periodic cell) "
+                       "are not spread over ranks yet: give --ranks-per-run 1");
+  const bool writes = comm::group_rank() == 0;
   const std::vector<std::size_t> mine = my_share(runs);
   double share_cost = 0.0;
   for (std::size_t i : mine) share_cost += runs[i].cost;
@@ -217,13 +228,16 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
           toml_text << "# run " << runs[i].id << " of the study " << opt_.file
                     << "; re-run alone with: geodem run scenario.toml\n"
                     << runs[i].scenario << "\n";
-          write_file_atomic(cat(dir, "/scenario.toml"), toml_text.str());
+          if (writes) write_file_atomic(cat(dir, "/scenario.toml"), toml_text.str());
           RunOptions ro;
           ro.out_dir = dir;
           ro.quiet = true;
+          ro.decompose = grouped;
+          ro.primary = writes;
+          if (grouped) ro.threads = opt_.workers;
           summary = settings[i].run(ro);
           std::error_code ec;
-          std::filesystem::remove(cat(dir, "/vtk"), ec);  // empty: the runs write no VTK
+          if (writes) std::filesystem::remove(cat(dir, "/vtk"), ec);  // empty: no VTK
         } catch (const InstabilityError& e) {
           summary = {{"status", "unstable"}, {"error", e.what()}};
         } catch (const std::exception& e) {
@@ -235,7 +249,8 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
       progress.add(runs[i].cost, from_before, results[i].value("status", "") != "completed");
     }
   };
-  const int workers = std::max(1, std::min<int>(opt_.workers, static_cast<int>(mine.size())));
+  const int workers =
+      grouped ? 1 : std::max(1, std::min<int>(opt_.workers, static_cast<int>(mine.size())));
   {
     std::vector<std::jthread> pool;
     for (int t = 1; t < workers; ++t) pool.emplace_back(work);
@@ -243,9 +258,10 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
   }
   progress.finish();
 
-  // Exchange: every rank sends {index: summary} for its share, and receives all.
+  // Exchange: every rank (the first of each group) sends {index: summary} for its share, and
+  // receives all.
   nlohmann::json part = nlohmann::json::object();
-  for (std::size_t i : mine)
+  for (std::size_t i : writes ? mine : std::vector<std::size_t>{})
     part[std::to_string(i)] = {{"summary", results[i]}, {"reused", reused[i] != 0}};
   for (const std::string& p : comm::all_gather(part.dump())) {
     const nlohmann::json received = nlohmann::json::parse(p);

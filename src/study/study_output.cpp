@@ -36,6 +36,7 @@ nlohmann::json study_timing(const std::vector<nlohmann::json>& summaries, double
   t["particle_steps_per_s"] = wall_s > 0.0 ? executor.particle_steps_computed() / wall_s : 0.0;
   t["threads"] = executor.options().workers;
   t["ranks"] = comm::size();
+  t["ranks_per_run"] = comm::group_size();
   t["runs_done"] = executor.runs_done();
   t["runs_reused"] = executor.runs_reused();
   return t;

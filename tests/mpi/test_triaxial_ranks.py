@@ -7,7 +7,8 @@ threads each) ranks, and a 3D test of spheres on 1, 2 and 4 ranks (oversubscribe
 same history.csv, preparation.csv and results. Killed (SIGKILL after periodic checkpoints, or SIGTERM) and resumed
 on another number of ranks, or by one process without mpirun, they write the files of the
 uninterrupted run. The element tests with walls (oedometer, isotropic, cyclic, direct shear)
-give the same bits on 1 and 2 ranks. What is not spread yet is refused with exit code 2: the
+give the same bits on 1 and 2 ranks. A series study whose runs go to groups of 2 ranks
+(`--ranks-per-run 2`) gives the same results on 1 and 2 groups. What is not spread yet is refused with exit code 2: the
 simple shear (always periodic), a periodic cell on several ranks, and slabs the grown grains
 make thinner than the ghost width.
 
@@ -46,12 +47,10 @@ def main() -> int:
                OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1",
                OMPI_MCA_mpi_yield_when_idle="1")
 
-    def run(ranks, scenario, out, *sets, threads=1):
+    def run(ranks, scenario, out, *extra, threads=1):
         launcher = [mpirun, "-n", str(ranks)] if ranks else []
         args = launcher + [geodem, "run", scenario, "--out", out, "--quiet", "--threads",
-                           str(threads)]
-        for s in sets:
-            args += ["--set", s]
+                           str(threads)] + list(extra)
         return subprocess.run(args, env=env, text=True, capture_output=True, timeout=600)
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -126,6 +125,38 @@ def main() -> int:
                 check(rows >= 10 and got[0] == got[1],
                       f"{kind}: history ({rows} rows), preparation and results on 2 ranks the "
                       f"same as on 1 rank")
+
+        # A study's runs on groups of 2 ranks (--ranks-per-run 2): one group running both runs
+        # (mpirun -n 2) and two groups running one each (-n 4) give the same study, and a run
+        # has the bits of its scenario run alone on 2 ranks.
+        study = os.path.join(tmp, "series.toml")
+        with open(study, "w") as f:
+            f.write('kind = "series"\n' + sample.replace('kind = "triaxial"\n', "")
+                    .replace('grain = "pair_0.9"\n', "") + "[shear]\nstrain_rate = 0.1\n"
+                    "max_axial_strain = 0.01\nconfining_stress = [1e5]\n"
+                    "[series]\ncounts = [100, 150]\nseeds = 1\n[output]\nplots = false\n")
+        studies = []
+        for ranks in (2, 4):
+            out = os.path.join(tmp, f"series.{ranks}")
+            r = run(ranks, study, out, "--ranks-per-run", "2")
+            if r.returncode != 0:
+                check(False, f"the series on {ranks} ranks in groups of 2 ran: {r.stderr}")
+                continue
+            studies.append(json.load(open(os.path.join(out, "summary.json"))))
+        if len(studies) == 2:
+            alone = os.path.join(tmp, "series.alone")
+            runs = os.path.join(tmp, "series.4", "runs")
+            run_dir = os.path.join(runs, sorted(os.listdir(runs))[-1])  # (150 grains)
+            r = run(2, os.path.join(run_dir, "scenario.toml"), alone)
+            check(studies[0]["results"] == studies[1]["results"] and
+                  studies[1]["timing"]["ranks_per_run"] == 2 and r.returncode == 0 and
+                  outputs(alone) == outputs(run_dir),
+                  "a series in groups of 2 ranks: the same on 1 and 2 groups, and a run the bits "
+                  "of its scenario alone on 2 ranks")
+        r = run(2, os.path.join(HERE, "triaxial3d.toml"), os.path.join(tmp, "no_study"),
+                "--ranks-per-run", "2")
+        check(r.returncode == 2 and "--ranks-per-run" in r.stderr,
+              f"--ranks-per-run on a single test refused: exit {r.returncode}")
 
         # Killed, then resumed on another number of ranks: the files of the uninterrupted run.
         # SIGKILL leaves the last periodic checkpoint (here after the prepared sample is kept:
