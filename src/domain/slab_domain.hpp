@@ -82,6 +82,8 @@ class SlabDomain final : public DomainHooks<D> {
   double rebalance_tolerance = 0.05;
   const std::vector<double>& cuts() const { return cuts_; }
   double ghost_width() const { return ghost_width_; }
+  // The thinnest an inner slab may be: the ghost width and the clumps' reach.
+  double thinnest_slab() const { return min_slab(); }
   // Grains this rank owns (the world's other grains are ghosts).
   std::size_t owned(const World<D>& world) const;
   // Bytes sent to the neighbours by the last step's ghost update.

@@ -9,8 +9,8 @@ on another number of ranks, or by one process without mpirun, they write the fil
 uninterrupted run. The element tests with walls (oedometer, isotropic, cyclic, direct shear)
 give the same bits on 1 and 2 ranks. A series study whose runs go to groups of 2 ranks
 (`--ranks-per-run 2`) gives the same results on 1 and 2 groups. What is not spread yet is refused with exit code 2: the
-simple shear (always periodic), a periodic cell on several ranks, and slabs the grown grains
-make thinner than the ghost width.
+simple shear (always periodic), a periodic cell on several ranks, and slabs thinner than the
+ghost width the compaction will grow to (refused before the run starts).
 
     test_triaxial_ranks.py PATH/TO/geodem
 Exit 77 (skipped) without mpirun or without MPI in geodem.
@@ -212,7 +212,7 @@ def main() -> int:
                     .replace("count = 150", 'count = 150\nboundary = "periodic"')
                     .split("[shear]")[0] + "[loading]\nnormal_stress = [1e5]\n"
                     "max_shear_strain = 0.01\n[output]\nplots = false\n")
-        for scenario, ranks, words in ((narrow, 4, ["narrow.toml", "mpirun -n", "too thin"]),
+        for scenario, ranks, words in ((narrow, 4, ["narrow.toml", "mpirun -n", "will grow", "too thin"]),
                                        (periodic, 2, ["periodic.toml", "sample.boundary"]),
                                        (simple, 2, ["simple_shear.toml", "without mpirun"])):
             r = run(ranks, scenario, os.path.join(tmp, os.path.basename(scenario) + ".out"))
