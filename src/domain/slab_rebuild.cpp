@@ -29,19 +29,26 @@ bool contains(const std::vector<std::uint32_t>& sorted, std::uint32_t id) {
 
 }  // namespace
 
-// Radius growth (the triaxial compaction) widens the reach of a contact: the ghost width
-// follows the whole domain's largest grain (and clump member offset), taken alike on every
-// rank, so the keys' grid (cells a ghost width across) is the same for any number of ranks.
+// Radius growth (the triaxial compaction) widens the reach of a contact: the skin follows the
+// whole domain's mean radius and the ghost width its largest grain (and clump member offset),
+// taken alike on every rank, so the keys' grid (cells a ghost width across) is the same for
+// any number of ranks.
 template <int D>
 void SlabDomain<D>::follow_grain_growth(const World<D>& world) {
   const auto& P = world.particles;
   double rmax = 0.0, offset = 0.0;
+  std::vector<ExactSum> radii(2);  // their sum and count: the skin, as one process takes it
   for (std::size_t i = 0; i < P.size(); ++i)
     if (!(P.flags[i] & kGhost)) {
       rmax = std::max(rmax, P.radius[i]);
+      radii[0].add(P.radius[i]), radii[1].add(1.0);
       if (clumped_ && P.clump[i] != kNoClump) offset = std::max(offset, P.body_offset[i].norm());
     }
   rmax = comm_->max(rmax);
+  // The skin follows the mean radius as one process's does (a skin kept from a loose cloud's
+  // small grains rebuilt the list twice as often through a compaction).
+  comm_->sum(radii);
+  if (radii[1].value() > 0.0) skin_ = world.skin_factor * radii[0].value() / radii[1].value();
   if (clumped_ && extent_ > 0.0) extent_ = std::max(extent_, comm_->max(offset) + 0.5 * skin_);
   const double width = 2.0 * rmax + skin_ + extent_;
   if (!(width > ghost_width_)) return;

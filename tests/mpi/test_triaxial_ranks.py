@@ -161,7 +161,7 @@ def main() -> int:
         # Killed, then resumed on another number of ranks: the files of the uninterrupted run.
         # SIGKILL leaves the last periodic checkpoint (here after the prepared sample is kept:
         # both samples' domains are in it); SIGTERM stops every rank at a step they agree on.
-        for name, first, then, sig, at in (("triaxial2d.toml", 2, 4, signal.SIGKILL, 70000),
+        for name, first, then, sig, at in (("triaxial2d.toml", 2, 4, signal.SIGKILL, 65000),
                                            ("triaxial3d.toml", 4, 0, signal.SIGTERM, 15000)):
             out = os.path.join(tmp, f"{name}.killed")
             scenario = os.path.join(HERE, name)
