@@ -34,12 +34,7 @@ std::size_t create_bonds(World<D>& world, double gap_tolerance) {
       if (counts) ++created;
     }
   }
-  if (world.domain) {
-    std::vector<ExactSum> n(1);
-    n[0].add(static_cast<double>(created));
-    world.domain->sum(n);
-    created = static_cast<std::size_t>(n[0].value());
-  }
+  if (world.domain) created = world.domain->count_over_ranks(created);
   return created;
 }
 

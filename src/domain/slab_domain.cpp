@@ -75,13 +75,7 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
         n > 0 ? xs[static_cast<std::size_t>(q) * n / static_cast<std::size_t>(ranks)] : 0.0;
   // A grain moves less than the skin between builds, and ghosts come from the next slab only:
   // the inner slabs must be at least a ghost width across.
-  for (std::size_t q = 1; q + 2 < d->cuts_.size(); ++q)
-    if (d->cuts_[q + 1] - d->cuts_[q] < d->min_slab())
-      refuse(std::to_string(ranks) + " ranks cut the grains into slabs " +
-             std::to_string(d->cuts_[q + 1] - d->cuts_[q]) + " m wide, less than " +
-             std::to_string(d->min_slab()) +
-             " m (the ghost width, 2 x largest radius + skin, and twice a clump's reach): use "
-             "fewer ranks");
+  d->refuse_thin_slabs(std::to_string(ranks) + " ranks cut the grains into slabs");
   // The keys' grid: the grains' bounding box now, cells a ghost width across (grains that
   // leave the box later take the edge cells until the keys are retaken, with a new grid).
   d->sort_every_ = world.sort_interval;
@@ -427,13 +421,19 @@ void SlabDomain<D>::grains_added(World<D>& world, std::size_t first_grain,
   // The reach of the new grains (every rank saw them all: the same on every rank).
   extent_ = std::max(extent_, offset > 0.0 ? offset + 0.5 * skin_ : 0.0);
   ghost_width_ = std::max(ghost_width_, 2.0 * rmax + skin_ + extent_);
+  refuse_thin_slabs("the grains added make the ghost width " + std::to_string(ghost_width_) + " m");
+  world.rebuild_needed = true;
+}
+
+template <int D>
+void SlabDomain<D>::refuse_thin_slabs(const std::string& cause) const {
   for (std::size_t q = 1; q + 2 < cuts_.size(); ++q)
     if (cuts_[q + 1] - cuts_[q] < min_slab())
       throw InputError("", 0, "",
-                       "the grains added make the ghost width " + std::to_string(ghost_width_) +
-                           " m: a slab of " + std::to_string(cuts_[q + 1] - cuts_[q]) +
-                           " m is too thin; use fewer ranks (docs/parallel.md)");
-  world.rebuild_needed = true;
+                       cause + ": a slab of " + std::to_string(cuts_[q + 1] - cuts_[q]) +
+                           " m is too thin, less than " + std::to_string(min_slab()) +
+                           " m (the ghost width, 2 x largest radius + skin, and twice a "
+                           "clump's reach); use fewer ranks (docs/parallel.md)");
 }
 
 template <int D>

@@ -147,6 +147,9 @@ class SlabDomain final : public DomainHooks<D> {
   bool clumped_ = false;
   double extent_ = 0.0;
   double min_slab() const { return ghost_width_ + extent_; }
+  // Throws InputError when an inner slab is thinner than min_slab(): ghosts come from the
+  // next slab only. `cause` says what made the width (every rank calls it alike).
+  void refuse_thin_slabs(const std::string& cause) const;
   std::vector<ClumpRecord<D>> clumps_out_down_, clumps_out_up_, ghost_clumps_;
   // History records to carry into the next build: from the world as distributed, or of
   // grains that arrived.

@@ -53,12 +53,7 @@ void SlabDomain<D>::follow_grain_growth(const World<D>& world) {
   const double width = 2.0 * rmax + skin_ + extent_;
   if (!(width > ghost_width_)) return;
   ghost_width_ = width;
-  for (std::size_t q = 1; q + 2 < cuts_.size(); ++q)
-    if (cuts_[q + 1] - cuts_[q] < min_slab())
-      throw InputError("", 0, "",
-                       "the grains grew to a ghost width of " + std::to_string(ghost_width_) +
-                           " m: a slab of " + std::to_string(cuts_[q + 1] - cuts_[q]) +
-                           " m is too thin; use fewer ranks (docs/parallel.md)");
+  refuse_thin_slabs("the grains grew to a ghost width of " + std::to_string(ghost_width_) + " m");
 }
 
 template <int D>

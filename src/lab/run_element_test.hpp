@@ -241,13 +241,7 @@ std::size_t grains_outside_shear_box(const Lab& lab) {
     const bool off_width = Lab::kDim == 3 && (P.pos[i][1] < 0.0 || P.pos[i][1] > width);
     if (x < shift || x > length + shift || z < 0.0 || z > top || off_width) ++out;
   }
-  if (lab.w.domain) {
-    std::vector<ExactSum> n(1);
-    n[0].add(static_cast<double>(out));
-    lab.w.domain->sum(n);
-    out = static_cast<std::size_t>(n[0].value());
-  }
-  return out;
+  return lab.w.domain ? lab.w.domain->count_over_ranks(out) : out;
 }
 
 template <class Lab>

@@ -306,11 +306,8 @@ double solid_volume_in_box(const World<D>& world, const Box<D>& box) {
 
 template <int D>
 std::uint64_t broken_bond_count(const World<D>& world) {
-  if (!world.domain) return world.broken_bonds;
-  std::vector<ExactSum> n(1);  // each rank counted the bonds of its rows
-  n[0].add(static_cast<double>(world.broken_bonds));
-  world.domain->sum(n);
-  return static_cast<std::uint64_t>(n[0].value());
+  // (each rank counted the bonds of its rows)
+  return world.domain ? world.domain->count_over_ranks(world.broken_bonds) : world.broken_bonds;
 }
 
 template <int D>

@@ -4,6 +4,7 @@
 // per grain or contact): the step stays one function for one process and for many.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,13 @@ class DomainHooks {
   virtual double min_over_ranks(double here) = 0;
   // Every rank's sums added, exactly (base/exact_sum.hpp), in place.
   virtual void sum(std::vector<ExactSum>& sums) = 0;
+  // Every rank's count added (each rank counts what it owns).
+  std::uint64_t count_over_ranks(std::uint64_t here) {
+    std::vector<ExactSum> n(1);
+    n[0].add(static_cast<double>(here));
+    sum(n);
+    return static_cast<std::uint64_t>(n[0].value());
+  }
   // The first non-empty text of the ranks in rank order ("" when all are empty): the
   // diagnosis that stops every rank when one meets an instability.
   virtual std::string first_text(const std::string& here) = 0;

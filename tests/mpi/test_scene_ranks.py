@@ -71,17 +71,27 @@ def pieces(out, ext=".pvtu"):
     return count, ids
 
 
-def main() -> int:
-    geodem = sys.argv[1]
+def mpi_launch(geodem):
+    """mpirun and its environment for oversubscribed ranks (as root too); None without mpirun
+    or without MPI in geodem."""
     mpirun = shutil.which("mpirun")
     version = subprocess.run([geodem, "--version"], capture_output=True, text=True).stdout
     if not mpirun or "MPI" not in version:
         print("no mpirun or geodem without MPI: skipped")
-        return 77
+        return None
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1",
                # (more ranks than cores: a waiting rank gives its core to the others)
                OMPI_MCA_mpi_yield_when_idle="1")
+    return mpirun, env
+
+
+def main() -> int:
+    geodem = sys.argv[1]
+    launch = mpi_launch(geodem)
+    if launch is None:
+        return 77
+    mpirun, env = launch
 
     def run(ranks, scenario, out, *sets, threads=1):
         args = [mpirun, "-n", str(ranks), geodem, "run", os.path.join(HERE, scenario), "--out",

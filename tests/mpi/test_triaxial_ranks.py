@@ -17,14 +17,13 @@ Exit 77 (skipped) without mpirun or without MPI in geodem.
 """
 import json
 import os
-import shutil
 import signal
 import subprocess
 import sys
 import tempfile
 import time
 
-from test_scene_ranks import check, failures, history, pieces
+from test_scene_ranks import check, failures, history, mpi_launch, pieces
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -38,14 +37,10 @@ def outputs(out):
 
 def main() -> int:
     geodem = sys.argv[1]
-    mpirun = shutil.which("mpirun")
-    version = subprocess.run([geodem, "--version"], capture_output=True, text=True).stdout
-    if not mpirun or "MPI" not in version:
-        print("no mpirun or geodem without MPI: skipped")
+    launch = mpi_launch(geodem)
+    if launch is None:
         return 77
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1",
-               OMPI_MCA_mpi_yield_when_idle="1")
+    mpirun, env = launch
 
     def run(ranks, scenario, out, *extra, threads=1):
         launcher = [mpirun, "-n", str(ranks)] if ranks else []
