@@ -79,9 +79,12 @@ KindRun run_pullout_kind(const LoadedScenario& l, const std::string& file, const
     return {summary["results"]["failed_runs"].empty() ? 0 : 1, line};
   }
   claim_output(opt, overwrite);
-  PlotProcess plots = p.plots ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
+  // (the plots of a decomposed run are rank 0's: the others write no history)
+  PlotProcess plots =
+      p.plots && opt.primary ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
   const auto summary = run_pullout(p, opt);
   plots.finish();
+  if (!opt.primary) return {};
   const auto& r = summary["results"];
   std::snprintf(line, sizeof line,
                 "T_max %.4g N/m, mechanism %s (design: slippage %.4g N/m, soil mass %.4g N/m)",
@@ -144,8 +147,12 @@ ScenarioKind direct_shear_kind() {
 ScenarioKind cyclic_triaxial_kind() {
   return spread_lab_kind("cyclic_triaxial", as_triaxial);
 }
+// A single pull-out spreads over the ranks of mpirun; one over seeds or grain sizes shares its
+// runs across them.
 ScenarioKind pullout_kind() {
-  return {"pullout", nullptr, true, pullout_series, check_pullout, run_pullout_kind};
+  ScenarioKind k{"pullout", nullptr, true, pullout_series, check_pullout, run_pullout_kind};
+  k.decomposes = true;
+  return k;
 }
 // The shear box writes no checkpoints: a stopped test is run again.
 ScenarioKind interface_shear_kind() {

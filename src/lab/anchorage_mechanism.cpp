@@ -4,9 +4,7 @@
 
 namespace geodem {
 
-std::vector<char> grains_near_sheet(const World<2>& w, double reach) {
-  const auto& P = w.particles;
-  const auto& S = w.spars;
+std::vector<char> grains_near_sheet(const Particles<2>& P, const SparChains<2>& S, double reach) {
   std::vector<char> near(P.size(), 0);
   for (std::size_t i = 0; i < P.size(); ++i)
     for (std::size_t e = 0; e < S.elements() && !near[i]; ++e) {
@@ -17,9 +15,8 @@ std::vector<char> grains_near_sheet(const World<2>& w, double reach) {
   return near;
 }
 
-double mean_grain_displacement(const World<2>& w, const std::vector<char>& selected_by_id,
+double mean_grain_displacement(const Particles<2>& P, const std::vector<char>& selected_by_id,
                                const std::vector<Dim<2>::Vec>& start_by_id) {
-  const auto& P = w.particles;
   double sum = 0.0;
   std::size_t n = 0;
   for (std::size_t i = 0; i < P.size(); ++i)

@@ -15,12 +15,13 @@
 
 namespace geodem {
 
-// Grains (by index) whose centre lies within `reach` of the sheet's axis.
-std::vector<char> grains_near_sheet(const World<2>& w, double reach);
+// The grains `P` (a world's, or a decomposed world's gathered: scene/scene_domain.hpp) whose
+// centre lies within `reach` of the axis of the chains `S`, by index in `P`.
+std::vector<char> grains_near_sheet(const Particles<2>& P, const SparChains<2>& S, double reach);
 
-// Mean displacement magnitude of the selected grains from their start positions (both
+// Mean displacement magnitude of the selected grains of `P` from their start positions (both
 // by grain id), and of the nodes with x > 0 (inside the box) from theirs.
-double mean_grain_displacement(const World<2>& w, const std::vector<char>& selected_by_id,
+double mean_grain_displacement(const Particles<2>& P, const std::vector<char>& selected_by_id,
                                const std::vector<Dim<2>::Vec>& start_by_id);
 double mean_embedded_node_displacement(const World<2>& w,
                                        const std::vector<Dim<2>::Vec>& node_start);

@@ -44,22 +44,24 @@ nlohmann::json estimate_parts_json(const AnchorEstimate& e) {
 
 }  // namespace
 
-void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0, double top,
-                double sigma_q) {
+void start_pull(Pull& u, const World<2>& w, const Particles<2>& P, const PulloutSettings& s,
+                double y0, double top, double sigma_q) {
   using Vec = Dim<2>::Vec;
-  const auto& P = w.particles;
   const std::size_t n = P.size();
+  std::size_t ids = 0;  // (the arrays by id: as many as the largest id and one)
+  for (std::size_t i = 0; i < n; ++i) ids = std::max<std::size_t>(ids, P.id[i] + std::size_t{1});
   const double x_end = s.anchor.runout_length + s.anchor.trench_width;
-  u.zone.assign(n, 0);
-  u.start.resize(n);
-  u.column.assign(n, 0);
+  u.zone.assign(ids, 0);
+  u.start.assign(ids, Vec::Zero());
+  u.column.assign(ids, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec x = P.pos[i];
-    u.start[i] = x;
-    u.column[i] = std::clamp(static_cast<int>(x.x() / s.box_length * s.columns), 0, s.columns - 1);
+    const std::uint32_t id = P.id[i];
+    u.start[id] = x;
+    u.column[id] = std::clamp(static_cast<int>(x.x() / s.box_length * s.columns), 0, s.columns - 1);
     const bool above = x.y() > y0;
     const bool in_trench = overlaps_trench(s.anchor, y0, x, 0.0);
-    u.zone[i] = x.x() > 0.0 && x.x() < x_end && (above || in_trench) ? 1 : 0;
+    u.zone[id] = x.x() > 0.0 && x.x() < x_end && (above || in_trench) ? 1 : 0;
   }
   u.zone_count = 0;
   for (char z : u.zone) u.zone_count += static_cast<std::uint64_t>(z);
@@ -91,8 +93,9 @@ void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0,
       soil_estimate(s.anchor, u.unit_weight, u.sigma_q, std::tan(s.soil_friction_deg * kDeg),
                     s.soil_cohesion, K, u.runout_load);
   // Next to the sheet: within a grain diameter of its faces.
-  u.near = grains_near_sheet(w, 2.0 * s.radius + 0.5 * s.thickness);
-  for (std::size_t i = 0; i < n; ++i) u.near[i] = u.near[i] && P.pos[i].x() > 0.0 ? 1 : 0;
+  const std::vector<char> near = grains_near_sheet(P, w.spars, 2.0 * s.radius + 0.5 * s.thickness);
+  u.near.assign(ids, 0);
+  for (std::size_t i = 0; i < n; ++i) u.near[P.id[i]] = near[i] && P.pos[i].x() > 0.0 ? 1 : 0;
   u.node_start = w.spars.pos;
   // The pull's own counters: records, profiles (taken from the back), the largest tension.
   u.profile_at = s.profiles_at;
@@ -113,9 +116,8 @@ void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0,
   u.parts_first_set = 0;
 }
 
-double anchoring_soil_displacement(const Pull& u, const World<2>& w, bool median,
+double anchoring_soil_displacement(const Pull& u, const Particles<2>& P, bool median,
                                    std::vector<double>& scratch) {
-  const auto& P = w.particles;
   scratch.clear();
   for (std::size_t i = 0; i < P.size(); ++i)
     if (u.zone[P.id[i]]) scratch.push_back(u.start[P.id[i]].x() - P.pos[i].x());
@@ -129,19 +131,19 @@ double anchoring_soil_displacement(const Pull& u, const World<2>& w, bool median
   return sum / static_cast<double>(scratch.size());
 }
 
-void pull_results(const Pull& u, const World<2>& w, const PulloutSettings& s,
+void pull_results(const Pull& u, const World<2>& w, const Particles<2>& P, const PulloutSettings& s,
                   nlohmann::json& results) {
   std::vector<double> scratch;
-  const double soil_mean = anchoring_soil_displacement(u, w, false, scratch);
+  const double soil_mean = anchoring_soil_displacement(u, P, false, scratch);
   results["soil_displacement_mean"] = soil_mean;
-  results["soil_displacement_median"] = anchoring_soil_displacement(u, w, true, scratch);
+  results["soil_displacement_median"] = anchoring_soil_displacement(u, P, true, scratch);
   results["soil_displacement_at_T_max"] = u.soil_at_max;
   results["soil_displacement_ratio"] = soil_mean / s.max_displacement;
   results["anchoring_zone_grains"] = u.zone_count;
   results["sheet"] = {{"nodes", w.spars.nodes()}, {"elements", w.spars.elements()}};
   results["pull_steps"] = w.step - u.pull_start;
   results["dt"] = w.dt;
-  results["grains"] = w.particles.size();
+  results["grains"] = P.size();
   results["T_max"] = u.t_max;
   results["displacement_at_T_max"] = u.d_at_max;
   results["T_analytic_slip"] = u.est.tension;
@@ -183,17 +185,16 @@ void pull_results(const Pull& u, const World<2>& w, const PulloutSettings& s,
 }
 
 void write_pullout_states(const std::string& path_grains, const std::string& path_sheet,
-                          const World<2>& w, const std::vector<int>& column_by_id) {
+                          const Particles<2>& P, const SparChains<2>& S,
+                          const std::vector<int>& column_by_id) {
   std::filesystem::create_directories(std::filesystem::path(path_grains).parent_path());
   HistoryCsv g;
   g.open(path_grains, {"id", "x", "y", "radius", "column"});
-  const auto& P = w.particles;
   for (std::size_t i = 0; i < P.size(); ++i)
     g.row({static_cast<double>(P.id[i]), P.pos[i].x(), P.pos[i].y(), P.radius[i],
            static_cast<double>(column_by_id[P.id[i]])});
   HistoryCsv sh;
   sh.open(path_sheet, {"node", "x", "y", "tension"});
-  const auto& S = w.spars;
   for (std::size_t i = 0; i < S.nodes(); ++i)
     sh.row({static_cast<double>(i), S.pos[i].x(), S.pos[i].y(),
             i < S.elements() ? S.tension[i] : 0.0});

@@ -16,8 +16,8 @@ namespace geodem {
 
 // The state of the pull, set up when the preparation ends.
 struct Pull {
-  // The anchoring soil: the fill above the run-out and in the trench, by grain id (ids
-  // of grains are their indices at the start of the pull: none is added or removed).
+  // The anchoring soil: the fill above the run-out and in the trench, by grain id (none is
+  // added or removed during the pull).
   std::vector<char> zone;
   std::vector<Dim<2>::Vec> start;
   std::vector<int> column;
@@ -97,28 +97,32 @@ inline const std::vector<std::string> kHistoryColumns = {"step",
                                                          "trench_normal"};
 inline const std::vector<std::string> kProfileColumns = {"displacement", "s", "tension"};
 
-// The pull's state when the preparation ends (grain ids equal to their indices): the
-// anchoring zone, the grains' start positions and bands, the unit weight of the cover and
-// the load on the run-out, the earth pressure coefficients, both design estimates (with
-// the macroscopic interface friction) and the grains next to the sheet. `y0` is the
-// run-out level, `top` the cover's surface, `sigma_q` the surcharge. Resets the pull's
-// counters (records, profiles, the largest tension so far).
-void start_pull(Pull& u, const World<2>& w, const PulloutSettings& s, double y0, double top,
-                double sigma_q);
+// The grains `P` of these functions are the whole sample's: the world's own in one process,
+// every rank's gathered in id order in a decomposed run (scene/scene_domain.hpp).
+
+// The pull's state when the preparation ends: the anchoring zone, the grains' start
+// positions and bands (arrays by grain id), the unit weight of the cover and the load on the
+// run-out, the earth pressure coefficients, both design estimates (with the macroscopic
+// interface friction) and the grains next to the sheet. `y0` is the run-out level, `top` the
+// cover's surface, `sigma_q` the surcharge. Resets the pull's counters (records, profiles, the
+// largest tension so far).
+void start_pull(Pull& u, const World<2>& w, const Particles<2>& P, const PulloutSettings& s,
+                double y0, double top, double sigma_q);
 
 // Displacement of the anchoring soil towards the pull: the mean, or the median (which
 // grains that roll off a free face far from the anchor do not pull up).
-double anchoring_soil_displacement(const Pull& u, const World<2>& w, bool median,
+double anchoring_soil_displacement(const Pull& u, const Particles<2>& P, bool median,
                                    std::vector<double>& scratch);
 
 // The estimates, the mechanism, the analytic terms and the soil's displacement of a
-// finished pull, with the counts of the final world `w`, into `results`.
-void pull_results(const Pull& u, const World<2>& w, const PulloutSettings& s,
+// finished pull, with the chains of the final world `w` and its grains `P`, into `results`.
+void pull_results(const Pull& u, const World<2>& w, const Particles<2>& P, const PulloutSettings& s,
                   nlohmann::json& results);
 
 // Grains (id, x, y, radius, column: the band each grain was in when the pull started) and
 // the sheet's nodes (with the tension of the element that starts there).
 void write_pullout_states(const std::string& path_grains, const std::string& path_sheet,
-                          const World<2>& w, const std::vector<int>& column_by_id);
+                          const Particles<2>& P, const SparChains<2>& S,
+                          const std::vector<int>& column_by_id);
 
 }  // namespace geodem

@@ -24,7 +24,10 @@ inline double scale_sheet_inertia(World<2>& w, double young, double J, double el
   World<2> grains_only = w;
   grains_only.spars = SparChains<2>{};
   grains_only.rebuild_needed = true;
-  const double dt = critical_timestep(grains_only) / w.dt_safety;
+  // (a decomposed world: every rank's grains, so that every rank scales the sheet alike)
+  double dt_grains = critical_timestep(grains_only);
+  if (w.domain) dt_grains = w.domain->min_over_ranks(dt_grains);
+  const double dt = dt_grains / w.dt_safety;
   const double m_over_k = 0.5 * dt * dt;  // dt^2 = 2 m / k
   const double k_contact = 2.0 * young;
   double factor = 1.0;

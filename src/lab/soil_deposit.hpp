@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "base/error.hpp"
+#include "base/exact_sum.hpp"
 #include "base/random.hpp"
 #include "clumps/grain_mix.hpp"
 #include "lab/deposit_settings.hpp"
@@ -63,11 +64,17 @@ inline void configure_deposit_world(World<2>& w, const DepositedSoil& s, double 
   w.local_damping = s.deposit_damping;
 }
 
+// The largest of every rank's `here` in a decomposed world (a rank's ghosts are copies of
+// grains another owns: a largest value may count them too).
+inline double largest_over_ranks(const World<2>& w, double here) {
+  return w.domain ? -w.domain->min_over_ranks(-here) : here;
+}
+
 inline double top_of_grains(const World<2>& w) {
   double t = 0.0;
   for (std::size_t i = 0; i < w.particles.size(); ++i)
     t = std::max(t, w.particles.pos[i].y() + w.particles.radius[i]);
-  return t;
+  return largest_over_ranks(w, t);
 }
 
 // Median over 12 columns of [x0, x1] of the highest grain top: the free surface's level
@@ -82,6 +89,7 @@ inline double surface_level(const World<2>& w, double x0, double x1) {
         std::clamp(static_cast<int>((x - x0) / (x1 - x0) * kCols), 0, kCols - 1));
     col_top[c] = std::max(col_top[c], w.particles.pos[i].y() + w.particles.radius[i]);
   }
+  for (double& t : col_top) t = largest_over_ranks(w, t);
   std::nth_element(col_top.begin(), col_top.begin() + kCols / 2, col_top.end());
   return col_top[kCols / 2];
 }
@@ -91,8 +99,18 @@ inline double surface_level(const World<2>& w, double x0, double x1) {
 // less). The unbalanced force ratio alone can be small in a falling cloud whose few
 // contacts are hard collisions: a layer once counted as settled while still in the air.
 inline bool soil_moving(const World<2>& w, double density) {
+  const auto& P = w.particles;
   double e = 0.0;
-  for (double r : w.particles.radius) e += density * 3.14159265358979323846 * r * r * r;
+  if (!w.domain) {
+    for (double r : P.radius) e += density * 3.14159265358979323846 * r * r * r;
+  } else {  // (every rank's own grains, summed exactly: the same for any number of ranks)
+    std::vector<ExactSum> sum(1);
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (!(P.flags[i] & kGhost))
+        sum[0].add(density * 3.14159265358979323846 * P.radius[i] * P.radius[i] * P.radius[i]);
+    w.domain->sum(sum);
+    e = sum[0].value();
+  }
   return kinetic_energy(w) > 0.1 * e * w.gravity.norm();
 }
 

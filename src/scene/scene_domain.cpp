@@ -115,10 +115,11 @@ void DomainWorldOnRank0<D>::swap() {
 
 template <int D>
 Particles<D> domain_grains(const World<D>& world) {
-  Particles<D> out;  // (centres and radii)
+  Particles<D> out;  // (centres, radii and ids)
   auto& domain = dynamic_cast<SlabDomain<D>&>(*world.domain);
   for (const auto& g : gather_grains(world, domain, false))
-    out.pos.push_back(g.pos), out.radius.push_back(g.radius);
+    out.pos.push_back(g.pos), out.radius.push_back(g.radius), out.id.push_back(g.id);
+  out.next_id = world.particles.next_id;
   return out;
 }
 

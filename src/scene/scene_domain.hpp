@@ -55,8 +55,8 @@ template <int D>
 Particles<D> grains_on_rank0(const World<D>& world, SlabDomain<D>& domain);
 
 // A stage's cloud in a decomposed world: every rank places it alike, clear of the whole
-// domain's grains (`domain_grains`: every rank's own grains, centres and radii, in id order, on
-// every rank), then keeps its own new grains (SlabDomain::grains_added).
+// domain's grains (`domain_grains`: every rank's own grains, centres, radii and ids, in id order,
+// on every rank), then keeps its own new grains (SlabDomain::grains_added).
 template <int D>
 Particles<D> domain_grains(const World<D>& world);
 template <int D>

@@ -43,13 +43,13 @@ TEST(AnchorageMechanism, MeasuresAndClassification) {
   World<2> w;
   w.spars.add_chain("sheet", {Vec(-0.1, 0.0), Vec(0.5, 0.0), Vec(1.0, 0.0)}, 1e5, 0.5, 0.002, 0);
   for (double y : {0.01, 0.03, 0.2}) w.particles.add(Vec(0.4, y), 0.01, 2600.0, 0);
-  const std::vector<char> near = grains_near_sheet(w, 0.025);
+  const std::vector<char> near = grains_near_sheet(w.particles, w.spars, 0.025);
   EXPECT_EQ(near, (std::vector<char>{1, 0, 0}));
   const std::vector<Vec> start = w.particles.pos;
   const std::vector<Vec> nodes = w.spars.pos;
   w.particles.pos[0] += Vec(-0.003, 0.004);  // moved 5 mm
   w.particles.pos[2] += Vec(-1.0, 0.0);      // not selected
-  EXPECT_NEAR(mean_grain_displacement(w, near, start), 0.005, 1e-15);
+  EXPECT_NEAR(mean_grain_displacement(w.particles, near, start), 0.005, 1e-15);
   for (auto& x : w.spars.pos) x += Vec(-0.02, 0.0);
   // Nodes inside the box (x > 0 at the start): two of three, each moved 20 mm.
   EXPECT_NEAR(mean_embedded_node_displacement(w, nodes), 0.02, 1e-15);

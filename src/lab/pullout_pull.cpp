@@ -1,0 +1,108 @@
+// The pull of the pull-out test (lab/pullout_runner.hpp): the start of the pull, the free
+// end pulled at a constant rate, the rows of the history and the tension profiles.
+#include <algorithm>
+
+#include "io/step_loop.hpp"
+#include "lab/anchorage_mechanism.hpp"
+#include "lab/pullout_runner.hpp"
+#include "measure/measurements.hpp"
+
+namespace geodem {
+
+void PulloutRun::begin_pull() {
+  auto& P = w.particles;
+  auto& S = w.spars;
+  prep["grains"] = grain_count();
+  prep["bodies"] = body_count(w);
+  prep["steps"] = w.step;
+  prep["time"] = w.time;
+  Pull& u = pull;
+  // (one process numbers the grains from 0; a decomposed run keeps their ids)
+  if (!domain)
+    for (std::size_t i = 0; i < P.size(); ++i) P.id[i] = static_cast<std::uint32_t>(i);
+  const double sigma_q = surcharge ? surcharge->pressure(w) : 0.0;
+  const Particles<2>& grains = all_grains();
+  start_pull(u, w, grains, s, y0, top, sigma_q);
+  if (root)
+    write_pullout_states(opt.out_dir + "/states/grains_initial.csv",
+                         opt.out_dir + "/states/sheet_initial.csv", grains, w.spars, u.column);
+  if (s.vtk) vtk.write(w);
+  if (root) {
+    history.open(opt.out_dir + "/history.csv", kHistoryColumns);
+    profiles.open(opt.out_dir + "/tension_profiles.csv", kProfileColumns);
+  }
+  w.local_damping = s.pull_damping;
+  S.vel[0] = Dim<2>::Vec(-s.rate, 0.0);
+  phase = Phase::kPull;
+}
+
+void PulloutRun::pull_phase() {
+  auto& S = w.spars;
+  Pull& u = pull;
+  const double d_record = s.max_displacement / s.history_points;
+  step_loop(
+      w, total_steps, [&] { return u.displacement < s.max_displacement; },
+      [&] {
+        const double next_d = u.clamp0.x() - (S.pos[0].x() - s.rate * w.dt);
+        return next_d >= u.next_record || next_d >= s.max_displacement;
+      },
+      [&] { return record_pull(d_record); }, [&] { return after_step(); });
+  phase = Phase::kDone;
+}
+
+bool PulloutRun::record_pull(double d_record) {
+  auto& S = w.spars;
+  Pull& u = pull;
+  u.displacement = u.clamp0.x() - S.pos[0].x();
+  u.add_step(w);
+  // The last row is always written, even when a change of dt made the prediction miss it.
+  if (w.measure_this_step || u.displacement >= s.max_displacement) {
+    SheetPartLoads parts;
+    const double T = u.end_row(parts);
+    const Particles<2>& grains = all_grains();
+    const double soil = anchoring_soil_displacement(u, grains, false, moved),
+                 median = anchoring_soil_displacement(u, grains, true, moved);
+    const double near = mean_grain_displacement(grains, u.near, u.start);
+    const double nodes = mean_embedded_node_displacement(w, u.node_start);
+    const std::vector<double> row = {static_cast<double>(w.step),
+                                     w.time,
+                                     u.displacement,
+                                     T,
+                                     S.tension[0],
+                                     soil,
+                                     median,
+                                     kinetic_energy(w),
+                                     unbalanced_force_ratio(w),
+                                     static_cast<double>(w.stats.spar_contacts),
+                                     near,
+                                     nodes,
+                                     parts.carried[kRunoutPart],
+                                     parts.normal[kRunoutPart],
+                                     parts.carried[kBendPart],
+                                     parts.normal[kBendPart],
+                                     parts.carried[kTrenchPart],
+                                     parts.normal[kTrenchPart]};
+    if (root) history.row(row);
+    if (T > u.t_max) {
+      u.t_max = T, u.d_at_max = u.displacement, u.soil_at_max = soil;
+      u.soil_median_at_max = median, u.near_at_max = near, u.nodes_at_max = nodes;
+      u.parts_at_max = parts;
+    }
+    while (u.next_record <= u.displacement) u.next_record += d_record;
+    progress.update("pull", w.step, w.time, u.displacement / s.max_displacement,
+                    "T " + format_sig(T) + " N/m");
+  }
+  while (!u.profile_at.empty() && u.displacement >= u.profile_at.back() - 1e-12) {
+    double arc = 0.0;
+    for (std::size_t e = 0; e < S.elements(); ++e) {
+      const double len = S.length(e);
+      if (root) profiles.row({u.profile_at.back(), arc + 0.5 * len, S.tension[e]});
+      arc += len;
+    }
+    if (s.vtk) vtk.write(w);
+    u.profile_at.pop_back();
+  }
+  return false;
+}
+
+}  // namespace geodem
