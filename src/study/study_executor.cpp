@@ -72,7 +72,9 @@ nlohmann::json run_or_resume(const Settings& settings, RunOptions ro, Run run) {
 struct CheckedRun {
   nlohmann::json resolved;
   std::function<nlohmann::json(const RunOptions&)> run;
-  bool spreads = false;  // may run over a group of ranks (a triaxial-kind run with walls)
+  // May run over a group of ranks: a triaxial-kind run with walls, a pull-out without a deposit
+  // cache.
+  bool spreads = false;
 };
 
 CheckedRun check_run(const toml::table& scenario, const std::string& file) {
@@ -83,7 +85,8 @@ CheckedRun check_run(const toml::table& scenario, const std::string& file) {
   }
   if (kind == "pullout") {
     auto s = std::make_shared<PulloutSettings>(read_pullout(scenario, file));
-    return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_pullout); }};
+    return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_pullout); },
+            s->deposit_cache.empty()};
   }
   auto s = std::make_shared<TriaxialSettings>(read_triaxial(scenario, file));
   return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_triaxial); },
@@ -202,8 +205,9 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
   for (const auto& c : settings)
     if (grouped && !c.spreads)
       throw InputError(opt_.file, 0, "--ranks-per-run",
-                       "the runs of this study (pull-out, interface shear or a periodic cell) "
-                       "are not spread over ranks yet: give --ranks-per-run 1");
+                       "the runs of this study (interface shear, a periodic cell, or a "
+                       "pull-out with a deposit cache) are not spread over ranks yet: give "
+                       "--ranks-per-run 1");
   const bool writes = comm::group_rank() == 0;
   const std::vector<std::size_t> mine = my_share(runs);
   double share_cost = 0.0;

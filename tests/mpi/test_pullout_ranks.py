@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""`mpirun -n K geodem run pullout.toml` spreads one pull-out test over K ranks with the same
+bits for any K: an L-shaped anchor in a bonded soil (tests/mpi/pullout_kind2d.toml: layers
+deposited, trimmed and excavated, the sheet laid with its inertia scaled, a free front whose
+spilled grains are removed, a surcharge plate, bonds, then the pull) on 1 rank and on 2 ranks of
+2 threads (the first run of a pull-out over seeds in groups of 2 ranks) writes the same
+history.csv, preparation.csv, tension_profiles.csv, grain and sheet states and results. Killed by
+SIGKILL on 2 ranks and resumed on 4, or stopped by SIGTERM on 2 ranks and resumed by one
+process without mpirun, it writes the files of the uninterrupted run, its last VTK frame in one
+piece per rank holding every grain once. A deposit cache under mpirun is refused with exit
+code 2.
+
+    test_pullout_ranks.py PATH/TO/geodem
+Exit 77 (skipped) without mpirun or without MPI in geodem.
+"""
+import json
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+from test_scene_ranks import check, failures, history, mpi_launch, pieces
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENARIO = os.path.join(HERE, "pullout_kind2d.toml")
+FILES = ("preparation.csv", "tension_profiles.csv", "states/grains_initial.csv",
+         "states/grains_final.csv", "states/sheet_final.csv")
+
+
+def outputs(out):
+    """What two runs of one test must share."""
+    got = {"history": history(os.path.join(out, "history.csv")),
+           "results": json.load(open(os.path.join(out, "summary.json")))["results"]}
+    for name in FILES:
+        got[name] = open(os.path.join(out, name)).read()
+    return got
+
+
+def main() -> int:
+    geodem = sys.argv[1]
+    launch = mpi_launch(geodem)
+    if launch is None:
+        return 77
+    mpirun, env = launch
+
+    def run(ranks, out, *extra, threads=1):
+        launcher = [mpirun, "-n", str(ranks)] if ranks else []
+        args = launcher + [geodem, "run", SCENARIO, "--out", out, "--quiet", "--threads",
+                           str(threads)] + list(extra)
+        return subprocess.run(args, env=env, text=True, capture_output=True, timeout=600)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "pullout.1")
+        r = run(1, out)
+        ref = outputs(out) if r.returncode == 0 else None
+        if ref is None:
+            check(False, f"the pull-out on 1 rank ran: {r.stdout}{r.stderr}")
+        else:
+            res, prep = ref["results"], ref["results"]["preparation"]
+            timing = json.load(open(os.path.join(out, "summary.json")))["timing"]
+            final = [int(float(line.split(",")[0]))
+                     for line in ref["states/grains_final.csv"].splitlines()[1:]]
+            check(timing["ranks"] == 1 and timing["particles"] == res["grains"] == len(final) and
+                  prep["bonds"] > 0 and prep["spilled_grains"] > 0 and res["T_max"] > 0.0 and
+                  len(ref["history"]) > 10,
+                  f"the pull-out on 1 rank: {res['grains']} grains ({prep['spilled_grains']} "
+                  f"spilled off the free front), {prep['bonds']} bonds, T_max "
+                  f"{res['T_max']:.1f} N/m, {len(ref['history']) - 1} history rows")
+
+        # Over seeds in groups of 2 ranks of 2 threads (--ranks-per-run 2): the run of the
+        # scenario's seed has the bits of the run on 1 rank.
+        out = os.path.join(tmp, "series")
+        r = run(2, out, "--set", "seeds=2", "--ranks-per-run", "2", threads=2)
+        run_dir = os.path.join(out, "runs", "seed3")
+        if r.returncode != 0 or ref is None:
+            check(False, f"the pull-out over 2 seeds in a group of 2 ranks ran: {r.stderr}")
+        else:
+            got = outputs(run_dir)
+            for part in got:
+                check(got[part] == ref[part], f"{part} on 2 ranks the same as on 1 rank")
+
+        # Killed, then resumed on another number of ranks: the files of the uninterrupted run.
+        # SIGKILL leaves the last periodic checkpoint (here in the settle of the bonded soil);
+        # SIGTERM stops every rank at a step they agree on (here in the trench's fill).
+        for first, then, sig, at in ((2, 4, signal.SIGKILL, 95000),
+                                     (2, 0, signal.SIGTERM, 40000)):
+            out = os.path.join(tmp, f"pullout.{sig.name}")
+            args = [mpirun, "-n", str(first), geodem, "run", SCENARIO, "--out", out, "--quiet",
+                    "--set", "checkpoint.every_steps=5000"]
+            p = subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL,
+                                 stderr=subprocess.DEVNULL)
+            ckdir = os.path.join(out, "checkpoint")
+
+            def newest():  # the step of the newest checkpoint written
+                names = os.listdir(ckdir) if os.path.isdir(ckdir) else []
+                return max([int(n[11:23]) for n in names if n.endswith(".bin")], default=0)
+            while p.poll() is None and newest() < at:
+                time.sleep(0.005)
+            if p.poll() is not None:
+                check(False, f"the pull-out on {first} ranks ended before it was stopped")
+                continue
+            for pid in os.listdir("/proc"):  # the ranks and mpirun of this run
+                try:
+                    if pid.isdigit() and out.encode() in open(f"/proc/{pid}/cmdline", "rb").read():
+                        os.kill(int(pid), sig)
+                except OSError:
+                    pass
+            p.wait()
+            ck = sorted(os.listdir(ckdir))
+            launcher = [mpirun, "-n", str(then)] if then else []
+            r = subprocess.run(launcher + [geodem, "run", SCENARIO, "--resume", out, "--quiet",
+                                           "--set", "checkpoint.every_steps=5000"],
+                               env=env, text=True, capture_output=True, timeout=600)
+            same = r.returncode == 0 and ref is not None and outputs(out) == ref
+            check(same, f"{sig.name} on {first} ranks (checkpoints {ck[-1:]}), resumed on "
+                        f"{then or 'one process without mpirun'}: every file of the "
+                        f"uninterrupted run {'' if r.returncode == 0 else r.stderr}")
+            if same:
+                count, ids = pieces(out)
+                final = [int(float(line.split(",")[0]))
+                         for line in ref["states/grains_final.csv"].splitlines()[1:]]
+                check(count == max(then, 1) and sorted(ids) == final,
+                      f"its last VTK frame in {count} pieces holding every grain once")
+
+        # A deposit cache is not shared by a decomposed run yet: exit 2 naming the key.
+        r = run(2, os.path.join(tmp, "cached"), "--set",
+                f"soil.deposit_cache=\"{os.path.join(tmp, 'cache')}\"")
+        check(r.returncode == 2 and "soil.deposit_cache" in r.stderr,
+              f"a deposit cache under mpirun refused: exit {r.returncode}")
+
+    print(f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
