@@ -153,9 +153,8 @@ int run_main(int argc, char** argv) {
       throw geodem::InputError(scenario, l.kind_line, "kind",
                                "under mpirun, studies (series, rate_study, calibrate) and "
                                "pull-outs over seeds share their runs across the ranks, and "
-                               "scenes, pull-outs and the triaxial and element tests (but the "
-                               "simple shear) spread their grains over them; run this kind "
-                               "without mpirun");
+                               "scenes and the lab tests (but the simple shear) spread their "
+                               "grains over them; run this kind without mpirun");
     // Single runs stop on SIGINT/SIGTERM after the step in progress, with a checkpoint;
     // runs shared as a study's keep the default (their finished runs are reused).
     if (!shared) geodem::install_interrupt_handlers();

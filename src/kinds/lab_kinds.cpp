@@ -105,9 +105,12 @@ KindRun run_interface_shear_kind(const LoadedScenario& l, const std::string& fil
                                  const RunOptions& opt, bool overwrite) {
   const InterfaceShearSettings p = read_interface_shear(l.root, file);
   claim_output(opt, overwrite);
-  PlotProcess plots = p.plots ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
+  // (the plots of a decomposed run are rank 0's: the others write no history)
+  PlotProcess plots =
+      p.plots && opt.primary ? PlotProcess::start(opt.out_dir, opt.quiet) : PlotProcess{};
   const auto summary = run_interface_shear(p, opt);
   plots.finish();
+  if (!opt.primary) return {};
   char line[256];
   std::snprintf(line, sizeof line, "interface friction %.4g deg (peak), %.4g deg (residual)",
                 summary["results"]["interface_friction_peak_deg"].get<double>(),
@@ -154,10 +157,13 @@ ScenarioKind pullout_kind() {
   k.decomposes = true;
   return k;
 }
-// The shear box writes no checkpoints: a stopped test is run again.
+// The shear box writes no checkpoints: a stopped test is run again. It spreads over the ranks
+// of mpirun.
 ScenarioKind interface_shear_kind() {
-  return {"interface_shear",       nullptr, false, single_run, check_interface_shear,
-          run_interface_shear_kind};
+  ScenarioKind k{"interface_shear",       nullptr, false, single_run, check_interface_shear,
+                 run_interface_shear_kind};
+  k.decomposes = true;
+  return k;
 }
 
 }  // namespace geodem

@@ -16,8 +16,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
+#include "base/exact_sum.hpp"
 #include "world/world.hpp"
 
 namespace geodem {
@@ -111,15 +113,39 @@ inline InterfaceStresses interface_stresses(const World<2>& w, double length) {
   return {-fx / length, -fy / length};
 }
 
-// Weight of the grains (N per metre): what the sheet carries beyond the plate's load.
-inline double grains_weight(const World<2>& w) {
+// Weight of the bodies (N per metre) wholly at or above height y (a clump: every member):
+// what the sheet carries beyond the plate's load. A decomposed world's is every rank's own
+// bodies', summed exactly over the ranks.
+inline double grains_weight_above(const World<2>& w, double y) {
   const auto& P = w.particles;
-  double m = 0.0;
+  const auto& C = w.clumps;
+  std::vector<char> below(C.size(), 0);
   for (std::size_t i = 0; i < P.size(); ++i)
-    if (!P.member(i) && P.inv_mass[i] > 0.0) m += 1.0 / P.inv_mass[i];
-  for (double im : w.clumps.inv_mass)
-    if (im > 0.0) m += 1.0 / im;
+    if (P.member(i) && P.pos[i].y() < y) below[P.clump[i]] = 1;
+  auto grain = [&](std::size_t i) {
+    return !P.member(i) && P.inv_mass[i] > 0.0 && P.pos[i].y() >= y ? 1.0 / P.inv_mass[i] : 0.0;
+  };
+  auto clump = [&](std::size_t c) {
+    return C.inv_mass[c] > 0.0 && !below[c] ? 1.0 / C.inv_mass[c] : 0.0;
+  };
+  double m = 0.0;
+  if (!w.domain) {
+    for (std::size_t i = 0; i < P.size(); ++i) m += grain(i);
+    for (std::size_t c = 0; c < C.size(); ++c) m += clump(c);
+  } else {
+    std::vector<ExactSum> sum(1);
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (!(P.flags[i] & kGhost)) sum[0].add(grain(i));
+    for (std::size_t c = 0; c < C.owned(); ++c) sum[0].add(clump(c));
+    w.domain->sum(sum);
+    m = sum[0].value();
+  }
   return m * w.gravity.norm();
+}
+
+// Weight of all the grains (N per metre).
+inline double grains_weight(const World<2>& w) {
+  return grains_weight_above(w, -std::numeric_limits<double>::infinity());
 }
 
 }  // namespace geodem

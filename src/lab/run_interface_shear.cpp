@@ -30,6 +30,7 @@
 #include "lab/deposit_cache.hpp"
 #include "lab/interface_box.hpp"
 #include "lab/interface_parameters.hpp"
+#include "lab/lab_domain.hpp"
 #include "lab/lab_phases.hpp"
 #include "lab/sheet_inertia.hpp"
 #include "lab/soil_deposit.hpp"
@@ -54,8 +55,12 @@ std::vector<std::string> history_columns() {
 struct InterfaceShear {
   const InterfaceShearSettings& s;
   const RunOptions& opt;
+  const bool root;  // writes the outputs: one process, or rank 0 of a decomposed run
   InterfaceBox box;
   World<2> w, deposit;
+  // Over the ranks of mpirun (docs/parallel.md): spread once the first layer is dropped; the
+  // deposit every test starts from keeps a copy of its domain (LabDomain::prepared).
+  LabDomain<2> domain;
   Random rng;
   Progress progress;
   VtkSeries<2> vtk;
@@ -68,8 +73,9 @@ struct InterfaceShear {
   InterfaceShear(const InterfaceShearSettings& settings, const RunOptions& options)
       : s(settings),
         opt(options),
+        root(options.primary),
         rng(settings.seed),
-        progress(options.quiet),
+        progress(options.quiet || !options.primary),
         vtk(options.out_dir) {
     vtk.with_contacts(s.vtk_contacts);
   }
@@ -77,6 +83,17 @@ struct InterfaceShear {
   bool soil_base() const { return s.base == "soil"; }
   // Height of the sheet's axis; the soil above it loads it.
   double sheet_axis() const { return (soil_base() ? s.lower_height : 0.0) + 0.5 * box.thickness; }
+
+  // The whole deposit's grains (a decomposed run: every rank's own, counted over the ranks).
+  std::size_t grain_count(const World<2>& world) const { return grain_and_clump_counts(world)[0]; }
+  // Closes a step of a loop (io/step_loop.hpp): a signal throws Interrupted. The ranks of a
+  // decomposed run stop together, at a step they agree on.
+  bool stop_on_signal() {
+    if (!domain) return stopped_by_signal();
+    if (total_steps % 64 == 0 && domain.current->any_rank(interrupt_signal() != 0))
+      throw Interrupted{interrupt_signal() ? interrupt_signal() : 15, ""};
+    return false;
+  }
 
   double fraction(double within) const {
     return (static_cast<double>(test) + within) / static_cast<double>(s.normal_stress.size() + 1);
@@ -113,7 +130,7 @@ struct InterfaceShear {
     std::uint64_t k = 0;
     step_loop(
         w, total_steps, [] { return true; }, [&] { return ++k % every == 0; },
-        [&] { return settled(stage, plate, k, every); }, [] { return stopped_by_signal(); });
+        [&] { return settled(stage, plate, k, every); }, [&] { return stop_on_signal(); });
   }
 
   // After a step of settle(): the progress line on measured steps; true when at rest.
@@ -146,10 +163,17 @@ struct InterfaceShear {
   void deposit_layers(double base, double height, const std::string& stage) {
     int layer = 0;
     for (;;) {
-      const double from = std::max(base, w.particles.size() == 0 ? 0.0 : top_of_grains(w));
-      if (w.particles.size() > 0 && top_of_grains(w) >= height) break;
+      const bool empty = grain_count(w) == 0;
+      const double from = std::max(base, empty ? 0.0 : top_of_grains(w));
+      if (!empty && top_of_grains(w) >= height) break;
       const double dense = std::min(s.layer_thickness, height - from + 2.0 * s.radius);
+      // (a decomposed run: every rank drops the same layer and keeps its own grains of it)
+      const std::size_t before = w.particles.size(), clumps_before = w.clumps.size();
       drop_layer(w, s, s.file, kinds, areas, rng, 0.0, s.box_length, from, dense);
+      if (domain)
+        keep_own_added_grains(w, before, clumps_before);
+      else if (opt.decompose)  // (the first layer of a run over ranks)
+        domain.current = decompose_world<2>(w, s.file, nullptr, false);
       settle(stage + " layer " + std::to_string(++layer), nullptr);
     }
     const auto& P = w.particles;
@@ -166,10 +190,13 @@ struct InterfaceShear {
       return;
     }
     deposit_layers(0.0, s.lower_height, "lower soil");
+    // The lower layer's grains are those of ids below `lower`: one process numbers them from
+    // 0; a decomposed run keeps its ids (new grains take ids from next_id on).
     auto& P = w.particles;
-    for (std::size_t i = 0; i < P.size(); ++i) P.id[i] = static_cast<std::uint32_t>(i);
-    const std::size_t lower = P.size();
-    hold_grains(w, std::vector<char>(lower, 1), true);
+    if (!domain)
+      for (std::size_t i = 0; i < P.size(); ++i) P.id[i] = static_cast<std::uint32_t>(i);
+    const std::size_t lower = domain ? P.next_id : P.size();
+    hold_grains(w, std::vector<char>(P.size(), 1), true);
     add_pulled_sheet(w, box, sheet_axis(), s.box_length - 2.0 * s.radius);
     if (s.mass_scaling)
       scale_sheet_inertia(w, s.soil.young, s.stiffness_J, s.element_length, s.node_mass_factor);
@@ -193,15 +220,12 @@ struct InterfaceShear {
   // Weight of the soil above the sheet per metre of the box (Pa on the sheet).
   double weight_on_sheet() const {
     if (!soil_base()) return grains_weight(w) / s.box_length;
-    World<2> upper = w;
-    remove_grains(upper, grains_where(w, [&](std::size_t i) {
-                    return w.particles.pos[i].y() < sheet_axis();
-                  }));
-    return grains_weight(upper) / s.box_length;
+    return grains_weight_above(w, sheet_axis()) / s.box_length;
   }
 
   nlohmann::json run_test(double sigma_n) {
     w = deposit;
+    domain.start_from_prepared(w);
     const std::size_t plate_wall = add_loading_plate(w, box, top_of_grains(w) + 0.5 * s.radius);
     w.resolve_pair_laws();
     set_soil_friction(w, s.soil, s.soil.friction);
@@ -275,9 +299,19 @@ struct InterfaceShear {
           const double pl_target = s.normal_stiffness > 0.0 ? sum_target / n : servo->target();
           const double cns_target = s.normal_stiffness > 0.0 ? pl_target + weight : sigma_n;
           const double rise = w.walls[plate_wall].point.y() - plate0;
-          history.row({static_cast<double>(test), cns_target, static_cast<double>(w.step), w.time,
-                       u, tau, sig, sig > 0.0 ? tau / sig : 0.0, pl, rise, kinetic_energy(w),
-                       static_cast<double>(w.stats.spar_contacts)});
+          const std::vector<double> row = {static_cast<double>(test),
+                                           cns_target,
+                                           static_cast<double>(w.step),
+                                           w.time,
+                                           u,
+                                           tau,
+                                           sig,
+                                           sig > 0.0 ? tau / sig : 0.0,
+                                           pl,
+                                           rise,
+                                           kinetic_energy(w),
+                                           static_cast<double>(w.stats.spar_contacts)};
+          if (root) history.row(row);
           c.displacement.push_back(u), c.shear.push_back(tau), c.normal.push_back(sig);
           c.dilation.push_back(rise);
           // Relative to the plate's load when shearing began: a target that a contracting
@@ -292,7 +326,7 @@ struct InterfaceShear {
                           fraction(u / s.max_displacement));
           return false;
         },
-        [] { return stopped_by_signal(); });
+        [&] { return stop_on_signal(); });
     if (s.vtk) vtk.write(w);
     const InterfaceTest t = interface_test(c, s.residual_from);
     return {{"normal_stress_target", sigma_n},
@@ -315,7 +349,7 @@ struct InterfaceShear {
             {"servo_error_max", servo_error},
             {"servo_error_mean", servo_error_sum / static_cast<double>(c.displacement.size())},
             {"bonds", bonds},
-            {"grains", w.particles.size()},
+            {"grains", grain_count(w)},
             {"shear_steps", w.step - start}};
   }
 };
@@ -338,6 +372,10 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
   const DepositCache cache(s.deposit_cache, "interface_shear_deposit", s.resolved,
                            {"shear.normal_stress", "output", "title", "seeds"});
   std::string cache_use;
+  if (opt.decompose && cache.enabled())
+    throw InputError(s.file, 0, "soil.deposit_cache",
+                     "a deposit cache is not read or written by a run over MPI ranks yet "
+                     "(docs/parallel.md); leave it out under mpirun");
   if (auto c = cache.load()) {
     // The pulled sheet is laid before the world's state goes back onto it.
     if (run.soil_base())
@@ -350,7 +388,8 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
     if (cache.enabled()) cache_use = "stored " + cache.path();
   }
   run.deposit = run.w;
-  run.history.open(opt.out_dir + "/history.csv", history_columns());
+  run.domain.keep_prepared(run.deposit);
+  if (run.root) run.history.open(opt.out_dir + "/history.csv", history_columns());
   nlohmann::json tests = nlohmann::json::array();
   // Under a constant normal stiffness the normal stress moves during a test: each envelope
   // takes the normal stress of its own state (at the peak, over the residual range).
@@ -384,13 +423,16 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
   results["interface_adhesion"] = ep.adhesion;
   results["interface_stiffness"] = stiffness_sum / static_cast<double>(sn.size());
   results["tests"] = tests;
-  results["deposit_grains"] = run.deposit.particles.size();
+  results["deposit_grains"] = run.grain_count(run.deposit);
   if (!cache_use.empty()) results["deposit_cache"] = cache_use;
   results["bodies"] = body_count(run.deposit);
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  nlohmann::json timing = timing_json(run.w, wall_s, run.total_steps, opt.threads);
+  if (run.domain) run.domain.add_timing(timing, run.w, run.total_steps);
+  if (!opt.primary) return {{"results", results}};
   return write_run_summary(opt.out_dir, "interface_shear", "completed", s.resolved, results,
-                           timing_json(run.w, wall_s, run.total_steps, opt.threads));
+                           timing);
 }
 }  // namespace
 
@@ -400,13 +442,17 @@ nlohmann::json run_interface_shear(const InterfaceShearSettings& s, const RunOpt
   try {
     return summarise_interruption("interface_shear", s.resolved, opt,
                                   [&] { return run_tests(s, opt); });
+  } catch (const InputError& e) {  // (the decomposition's, met in a build: name the file)
+    if (!e.file().empty()) throw;
+    throw InputError(s.file, 0, "mpirun -n", e.detail());
   } catch (const InstabilityError& e) {
     const std::string why =
         std::string(e.what()) +
         " [interface shear tests take the automatic time step: time.safety (default 0.8); the "
         "soil's young]";
-    write_stopped_summary(opt.out_dir, "interface_shear", s.resolved, "unstable", why, "",
-                          opt.threads);
+    if (opt.primary)
+      write_stopped_summary(opt.out_dir, "interface_shear", s.resolved, "unstable", why, "",
+                            opt.threads);
     throw InstabilityError(why);
   }
 }

@@ -72,8 +72,8 @@ nlohmann::json run_or_resume(const Settings& settings, RunOptions ro, Run run) {
 struct CheckedRun {
   nlohmann::json resolved;
   std::function<nlohmann::json(const RunOptions&)> run;
-  // May run over a group of ranks: a triaxial-kind run with walls, a pull-out without a deposit
-  // cache.
+  // May run over a group of ranks: a triaxial-kind run with walls, a pull-out or an interface
+  // shear test without a deposit cache.
   bool spreads = false;
 };
 
@@ -81,7 +81,8 @@ CheckedRun check_run(const toml::table& scenario, const std::string& file) {
   const std::string kind = scenario["kind"].value_or(std::string("triaxial"));
   if (kind == "interface_shear") {
     auto s = std::make_shared<InterfaceShearSettings>(read_interface_shear(scenario, file));
-    return {s->resolved, [s](const RunOptions& ro) { return run_interface_shear(*s, ro); }};
+    return {s->resolved, [s](const RunOptions& ro) { return run_interface_shear(*s, ro); },
+            s->deposit_cache.empty()};
   }
   if (kind == "pullout") {
     auto s = std::make_shared<PulloutSettings>(read_pullout(scenario, file));
@@ -205,8 +206,8 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
   for (const auto& c : settings)
     if (grouped && !c.spreads)
       throw InputError(opt_.file, 0, "--ranks-per-run",
-                       "the runs of this study (interface shear, a periodic cell, or a "
-                       "pull-out with a deposit cache) are not spread over ranks yet: give "
+                       "the runs of this study (a periodic cell, or a pull-out or interface "
+                       "shear with a deposit cache) are not spread over ranks yet: give "
                        "--ranks-per-run 1");
   const bool writes = comm::group_rank() == 0;
   const std::vector<std::size_t> mine = my_share(runs);
