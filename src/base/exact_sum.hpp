@@ -31,6 +31,13 @@ class ExactSum {
   const std::array<std::int64_t, kDigits + 3>& raw() const { return limb_; }
   // Carries each digit's overflow into the next: every digit but the top one in [0, 2^32).
   void normalise();
+  // Before the raw limbs of `parts` accumulators (the ranks) are added: normalises only when
+  // the terms added since the last normalise() could make a limb of that sum overflow (a limb
+  // holds less than (terms + 1) 2^32: parts x (terms + 1) below 2^30 keeps the sum below 2^62).
+  void prepare_merge(int parts) {
+    if (static_cast<std::uint64_t>(pending_ + 1) * static_cast<std::uint64_t>(parts) >= (1u << 30))
+      normalise();
+  }
 
  private:
   // Digits, then the counts of +inf, -inf and NaN terms (they take no digits).

@@ -58,12 +58,12 @@ class MpiDomainComm final : public DomainComm {
     return out;
   }
   void sum(std::vector<ExactSum>& sums) override {
-    // Integer limbs: their sum is exact in any order.
+    // Integer limbs: their sum is exact in any order (and normalised once, after it).
     constexpr std::size_t width = ExactSum::kDigits + 3;
     limbs_.resize(sums.size() * width), total_.resize(limbs_.size());
     auto &limbs = limbs_, &total = total_;
     for (std::size_t k = 0; k < sums.size(); ++k) {
-      sums[k].normalise();
+      sums[k].prepare_merge(size_);
       for (std::size_t d = 0; d < width; ++d) limbs[k * width + d] = sums[k].raw()[d];
     }
     MPI_Allreduce(limbs.data(), total.data(), count_of(limbs.size()), MPI_INT64_T, MPI_SUM, comm_);

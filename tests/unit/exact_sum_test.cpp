@@ -41,8 +41,13 @@ TEST(ExactSum, TwoTermsEqualTheCorrectlyRoundedIeeeSum) {
   for (auto [lo, hi] : {std::pair{-1074, -1000}, std::pair{-60, 60}, std::pair{-1074, 1023},
                         std::pair{960, 1023}}) {
     const auto v = random_terms(20000, lo, hi, 7u + static_cast<unsigned>(lo + 2000));
-    for (std::size_t i = 0; i + 1 < v.size(); i += 2)
+    for (std::size_t i = 0; i + 1 < v.size(); i += 2) {
       ASSERT_EQ(bits(exact({v[i], v[i + 1]})), bits(v[i] + v[i + 1])) << v[i] << " + " << v[i + 1];
+      // Normalised first (as a reduction over ranks leaves it): read in place when positive.
+      ExactSum s;
+      s.add(v[i]), s.add(v[i + 1]), s.normalise();
+      ASSERT_EQ(bits(s.value()), bits(v[i] + v[i + 1])) << v[i] << " + " << v[i + 1];
+    }
   }
 }
 
