@@ -70,20 +70,18 @@ void keep_loaded_pairs(NeighbourList<D>& old, std::size_t n, int threads) {
   const bool par = threads > 1 && n >= kParallelMin;
   const auto rows = static_cast<std::ptrdiff_t>(n);
   std::vector<std::uint32_t> start(n + 1, 0);
-#pragma omp parallel for num_threads(threads) schedule(static) if (par)
-  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+  for_each_index(rows, threads, par, [&](std::ptrdiff_t r) {
     const auto i = static_cast<std::size_t>(r);
     std::uint32_t kept = 0;
     for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k) kept += loaded(k) ? 1u : 0u;
     start[i + 1] = kept;
-  }
+  });
   for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
   if (start[n] == old.other.size()) return;
   std::vector<std::uint32_t> other(start[n]);
   std::vector<TangentSpring<D>> spring(start[n]);
   std::vector<ContactExtra<D>> extra(extras ? start[n] : 0);
-#pragma omp parallel for num_threads(threads) schedule(static) if (par)
-  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+  for_each_index(rows, threads, par, [&](std::ptrdiff_t r) {
     const auto i = static_cast<std::size_t>(r);
     std::uint32_t m = start[i];
     for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k)
@@ -93,7 +91,7 @@ void keep_loaded_pairs(NeighbourList<D>& old, std::size_t n, int threads) {
         if (extras) extra[m] = old.extra[k];
         ++m;
       }
-  }
+  });
   old.start.swap(start);
   old.other.swap(other);
   old.spring.swap(spring);

@@ -337,15 +337,14 @@ void build_neighbour_list(World<D>& world) {
         L.wall_start[i + 1] = static_cast<std::uint32_t>(L.wall.size());
       }
     }
-#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
-    for (std::ptrdiff_t ii = 0; ii < two_pass_rows; ++ii) {
+    for_each_index(two_pass_rows, world.threads, par, [&](std::ptrdiff_t ii) {
       const auto i = static_cast<std::size_t>(ii);
       std::uint32_t np = 0, nw = 0;
       scan(
           i, [&](std::uint32_t) { ++np; }, [&](std::uint32_t) { ++nw; });
       L.start[i + 1] = np;
       L.wall_start[i + 1] = nw;
-    }
+    });
     for (std::size_t i = 0; par && i < n; ++i) {
       L.start[i + 1] += L.start[i];
       L.wall_start[i + 1] += L.wall_start[i];
@@ -356,14 +355,13 @@ void build_neighbour_list(World<D>& world) {
     }
     std::uint32_t* other = L.other.data();
     std::uint32_t* walls = L.wall.data();
-#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
-    for (std::ptrdiff_t ii = 0; ii < two_pass_rows; ++ii) {
+    for_each_index(two_pass_rows, world.threads, par, [&](std::ptrdiff_t ii) {
       const auto i = static_cast<std::size_t>(ii);
       std::uint32_t p = L.start[i], q = L.wall_start[i];
       scan(
           i, [&](std::uint32_t j) { other[p++] = j; }, [&](std::uint32_t w) { walls[q++] = w; });
       std::sort(other + L.start[i], other + p);
-    }
+    });
     if (!world.spars.empty()) list_spar_pairs(world, g, rmax);
   }
 
@@ -380,11 +378,10 @@ void build_neighbour_list(World<D>& world) {
   auto drop_nothing = [](const auto&) {};
   std::uint64_t dropped_bonds = 0;  // a count: the same in any order
   const auto rows = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for num_threads(world.threads) schedule(static) reduction(+ : dropped_bonds) \
-    if (world.threads > 1 && n >= kParallelMin)
-  for (std::ptrdiff_t ii = 0; ii < rows; ++ii) {
+  // Row i's history merged; the bonds it drops counted in `dropped`.
+  auto merge_row = [&](std::ptrdiff_t ii, std::uint64_t& dropped) {
     const auto i = static_cast<std::size_t>(ii);
-    auto drop_extra = [&dropped_bonds](const ContactExtra<D>& e) { dropped_bonds += e.bonded; };
+    auto drop_extra = [&dropped](const ContactExtra<D>& e) { dropped += e.bonded; };
     const std::size_t nb = L.start[i], nn = L.start[i + 1] - nb;
     const std::size_t wb = L.wall_start[i], wn = L.wall_start[i + 1] - wb;
     if (have_old) {
@@ -404,6 +401,12 @@ void build_neighbour_list(World<D>& world) {
       for (std::size_t k = 0; k < nn; ++k) L.spring[nb + k] = unloaded_spring<D>();
       for (std::size_t k = 0; k < wn; ++k) L.wall_spring[wb + k] = unloaded_spring<D>();
     }
+  };
+  if (world.threads > 1 && n >= kParallelMin) {  // (else no region: base/parallel.hpp)
+#pragma omp parallel for num_threads(world.threads) schedule(static) reduction(+ : dropped_bonds)
+    for (std::ptrdiff_t ii = 0; ii < rows; ++ii) merge_row(ii, dropped_bonds);
+  } else {
+    for (std::ptrdiff_t ii = 0; ii < rows; ++ii) merge_row(ii, dropped_bonds);
   }
   world.broken_bonds += dropped_bonds;
   if (!L.spar_start.empty()) {

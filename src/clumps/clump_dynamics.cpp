@@ -117,25 +117,22 @@ double place_members(World<D>& world) {
   using Mat = Eigen::Matrix<double, D, D>;
   auto& P = world.particles;
   const auto& C = world.clumps;
-  double vmax2 = 0.0;  // a maximum: the same in any order
-  if (C.size() == 0) return vmax2;
+  if (C.size() == 0) return 0.0;
   const Mat* __restrict R = C.rotation.data();
   const auto n = static_cast<std::ptrdiff_t>(P.size());
   const std::size_t owned = C.owned();
-#pragma omp parallel for num_threads(world.threads) schedule(static) \
-    reduction(max                                                    \
-              : vmax2) if (world.threads > 1 && P.size() >= kParallelMin)
-  for (std::ptrdiff_t k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    const std::uint32_t c = P.clump[i];
-    if (c >= owned) continue;  // no clump, or a ghost clump (its owner places the members)
-    const Vec arm = R[c] * P.body_offset[i];
-    P.pos[i] = C.pos[c] + arm;
-    P.vel[i] = C.vel[c] + Dim<D>::cross(C.angvel[c], arm);
-    P.angvel[i] = C.angvel[c];
-    vmax2 = std::max(vmax2, P.vel[i].squaredNorm());
-  }
-  return vmax2;
+  // (a maximum of the members' speeds: the same in any order)
+  return extreme_over_indices<true>(
+      n, world.threads, P.size() >= kParallelMin, 0.0, [&](std::ptrdiff_t k) {
+        const auto i = static_cast<std::size_t>(k);
+        const std::uint32_t c = P.clump[i];
+        if (c >= owned) return 0.0;  // no clump, or a ghost clump (its owner places the members)
+        const Vec arm = R[c] * P.body_offset[i];
+        P.pos[i] = C.pos[c] + arm;
+        P.vel[i] = C.vel[c] + Dim<D>::cross(C.angvel[c], arm);
+        P.angvel[i] = C.angvel[c];
+        return P.vel[i].squaredNorm();
+      });
 }
 
 namespace {
@@ -203,8 +200,7 @@ double integrate_clumps(World<D>& world) {
   const auto& members = clump_members(world);
   const std::uint32_t* mstart = members.start.data();
   const std::uint32_t* mgrain = members.grain.data();
-#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
-  for (std::ptrdiff_t k = 0; k < ncs; ++k) {
+  for_each_index(ncs, world.threads, par, [&](std::ptrdiff_t k) {
     const auto c = static_cast<std::size_t>(k);
     Vec f = Vec::Zero();
     typename Dim<D>::Rot t = Dim<D>::zero_rot();
@@ -216,7 +212,7 @@ double integrate_clumps(World<D>& world) {
     }
     C.force[c] = f;
     C.torque[c] = t;
-  }
+  });
   // When the contact stage measured the fabric stress with member centres as the grains'
   // centres, the clump's own centre replaces them: add (X - x_m) (x) F_m for each member m
   // (docs/physics.md, "Clumps"); one sum, in grain order. (A decomposed world: above.)
@@ -233,8 +229,7 @@ double integrate_clumps(World<D>& world) {
   if constexpr (D == 3) body_momentum.resize(nc);
   Vec* lb = body_momentum.data();
   const bool any_held = !C.held.empty();
-#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
-  for (std::ptrdiff_t k = 0; k < ncs; ++k) {
+  for_each_index(ncs, world.threads, par, [&](std::ptrdiff_t k) {
     const auto c = static_cast<std::size_t>(k);
     if (any_held && C.held[c]) {  // kept still: no kick, no drift, no turn
       C.vel[c].setZero();
@@ -243,7 +238,7 @@ double integrate_clumps(World<D>& world) {
         C.angmom[c].setZero();
         lb[c].setZero();
       }
-      continue;
+      return;
     }
     Vec a = C.force[c] * C.inv_mass[c] + g;
     if (alpha > 0.0)
@@ -284,24 +279,22 @@ double integrate_clumps(World<D>& world) {
       C.angmom[c] += t * dt;
       lb[c] = C.rotation[c].transpose() * C.angmom[c];
     }
-  }
+  });
   if constexpr (D == 3) {
     // Free rotations two clumps at a time: each is a long chain of dependent operations,
     // and two independent chains side by side let the processor overlap them.
     const auto pairs = static_cast<std::ptrdiff_t>(nc / 2);
-#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
-    for (std::ptrdiff_t k = 0; k < pairs; ++k) {
+    for_each_index(pairs, world.threads, par, [&](std::ptrdiff_t k) {
       const auto c = 2 * static_cast<std::size_t>(k);
       free_rotation_pair(C.orient[c], lb[c], C.inv_inertia[c], C.orient[c + 1], lb[c + 1],
                          C.inv_inertia[c + 1], dt);
-    }
+    });
     if (nc % 2 == 1) free_rotation(C.orient[nc - 1], lb[nc - 1], C.inv_inertia[nc - 1], dt);
-#pragma omp parallel for num_threads(world.threads) schedule(static) if (par)
-    for (std::ptrdiff_t k = 0; k < ncs; ++k) {
+    for_each_index(ncs, world.threads, par, [&](std::ptrdiff_t k) {
       const auto c = static_cast<std::size_t>(k);
       C.rotation[c] = C.orient[c].toRotationMatrix();
       C.angvel[c] = C.rotation[c] * Vec(lb[c].cwiseProduct(C.inv_inertia[c]));
-    }
+    });
   }
   return place_members(world);
 }

@@ -183,34 +183,35 @@ double critical_timestep(const World<D>& world) {
 
   // dt^2 = 2 x the smallest of m/K_t and I/K_r (the sqrt(2) of yade: the critical
   // step of a grain on a spring whose other end moves in antiphase).
-  double dt2 = std::numeric_limits<double>::infinity();  // a minimum: the same in any order
-  const auto grains = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for num_threads(world.threads) schedule(static) \
-    reduction(min                                                    \
-              : dt2) if (world.threads > 1 && n >= kParallelMin)
-  for (std::ptrdiff_t ii = 0; ii < grains; ++ii) {
+  // (a minimum over grains: the same in any order)
+  const double inf = std::numeric_limits<double>::infinity();
+  auto grain_dt2 = [&](std::ptrdiff_t ii) {
     const auto i = static_cast<std::size_t>(ii);
     // A ghost's contacts are its owner's to count (here it lacks those with other ghosts).
-    if (P.inv_mass[i] == 0.0 || (P.flags[i] & kGhost)) continue;
+    if (P.inv_mass[i] == 0.0 || (P.flags[i] & kGhost)) return inf;
     const double m = 1.0 / P.inv_mass[i], inertia = 1.0 / P.inv_inertia[i];
     const auto& mat = world.materials[P.material[i]];
     const PairLaw& self = world.pair_law(P.material[i], P.material[i]);
     // A grain without contacts yet: its first collision with an equal grain (linear
     // law), or 0.2 x the Rayleigh wave time (Hertz law).
+    double d = inf;
     if (self.law == LawKind::kLinear) {
       const double kn = self.linear_kn(P.radius[i], P.radius[i]);
-      dt2 = std::min(dt2, m / std::max(kn, self.linear_kt(kn)));
+      d = std::min(d, m / std::max(kn, self.linear_kt(kn)));
     } else {
       const double shear = mat.young / (2.0 * (1.0 + mat.poisson));
       const double rayleigh = 0.2 * std::numbers::pi * P.radius[i] *
                               std::sqrt(mat.density / shear) / (0.1631 * mat.poisson + 0.8766);
-      dt2 = std::min(dt2, 0.5 * rayleigh * rayleigh);
+      d = std::min(d, 0.5 * rayleigh * rayleigh);
     }
-    if (P.member(i)) continue;  // its clump's stiffness is checked below
+    if (P.member(i)) return d;  // its clump's stiffness is checked below
     const double kt = K.max_trans(i), kr = K.max_rot(i);
-    if (kt > 0.0) dt2 = std::min(dt2, m / kt);
-    if (kr > 0.0) dt2 = std::min(dt2, inertia / kr);
-  }
+    if (kt > 0.0) d = std::min(d, m / kt);
+    if (kr > 0.0) d = std::min(d, inertia / kr);
+    return d;
+  };
+  double dt2 = extreme_over_indices<false>(static_cast<std::ptrdiff_t>(n), world.threads,
+                                           n >= kParallelMin, inf, grain_dt2);
   for (std::size_t c = 0; c < C.owned(); ++c) {  // (a ghost clump is its owner's to check)
     const double kt = K.max_trans(n + c), kr = K.max_rot(n + c);
     if (kt > 0.0) dt2 = std::min(dt2, 1.0 / (C.inv_mass[c] * kt));

@@ -47,14 +47,10 @@ void integrate(World<D>& world) {
   // In a periodic cell, velocities are relative to the cell's affine field L x.
   const bool periodic = world.cell.periodic;
   const typename Dim<D>::Tensor L = world.cell.vel_grad;
-  double vmax2 = 0.0;  // a maximum: the same in any order
-  const auto nn = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for num_threads(world.threads) schedule(static) \
-    reduction(max                                                    \
-              : vmax2) if (world.threads > 1 && n >= kParallelMin)
-  for (std::ptrdiff_t i = 0; i < nn; ++i) {
+  // Moves grain i; returns its speed squared (a maximum over grains: the same in any order).
+  auto move = [&](std::ptrdiff_t i) {
     // Moved with its clump below, or a ghost (its owner moves it).
-    if (flags[i] & (kClumpMember | kGhost)) continue;
+    if (flags[i] & (kClumpMember | kGhost)) return 0.0;
     if (!(flags[i] & kFixed)) {
       Vec a = force[i] * inv_mass[i] + g;
       Rot aw = torque[i] * inv_inertia[i];
@@ -71,8 +67,10 @@ void integrate(World<D>& world) {
       pos[i] += vel[i] * dt;
     }
     if (track) Dim<D>::rotate(orient[i], angvel[i], dt);
-    vmax2 = std::max(vmax2, vel[i].squaredNorm());
-  }
+    return vel[i].squaredNorm();
+  };
+  double vmax2 = extreme_over_indices<true>(static_cast<std::ptrdiff_t>(n), world.threads,
+                                            n >= kParallelMin, 0.0, move);
   vmax2 = std::max(vmax2, integrate_clumps(world));
   // Bound on how far any grain moved since the neighbour list was checked (spar nodes
   // are checked exactly, like walls: they are few).

@@ -67,14 +67,12 @@ bool list_expired(World<D>& world) {
     auto expired = [&](double u) { return 2.0 * u + closing > skin; };
     if (!expired(world.disp_bound + world.radius_growth)) return false;
     const typename Dim<D>::Tensor F = world.cell.h * world.cell.h_at_build.inverse();
-    double d2 = 0.0;  // a maximum: the same in any order
-#pragma omp parallel for num_threads(world.threads) schedule(static) \
-    reduction(max                                                    \
-              : d2) if (world.threads > 1 && P.size() >= kParallelMin)
-    for (std::ptrdiff_t i = 0; i < n; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      d2 = std::max(d2, (P.pos[k] - F * P.pos_at_build[k]).squaredNorm());
-    }
+    // (a maximum: the same in any order)
+    const double d2 = extreme_over_indices<true>(
+        n, world.threads, P.size() >= kParallelMin, 0.0, [&](std::ptrdiff_t i) {
+          const auto k = static_cast<std::size_t>(i);
+          return (P.pos[k] - F * P.pos_at_build[k]).squaredNorm();
+        });
     world.disp_bound = std::sqrt(d2);
     return expired(world.disp_bound + world.radius_growth);
   }
@@ -97,14 +95,12 @@ bool list_expired(World<D>& world) {
   } else if (!expired(world.disp_bound + world.radius_growth)) {
     return false;
   }
-  double d2 = 0.0;  // a maximum: the same in any order
-#pragma omp parallel for num_threads(world.threads) schedule(static) \
-    reduction(max                                                    \
-              : d2) if (world.threads > 1 && P.size() >= kParallelMin)
-  for (std::ptrdiff_t i = 0; i < n; ++i)
-    d2 = std::max(d2,
-                  (P.pos[static_cast<std::size_t>(i)] - P.pos_at_build[static_cast<std::size_t>(i)])
-                      .squaredNorm());
+  // (a maximum: the same in any order)
+  const double d2 = extreme_over_indices<true>(
+      n, world.threads, P.size() >= kParallelMin, 0.0, [&](std::ptrdiff_t i) {
+        const auto k = static_cast<std::size_t>(i);
+        return (P.pos[k] - P.pos_at_build[k]).squaredNorm();
+      });
   world.disp_bound = std::sqrt(d2);
   if (world.domain) world.disp_bound = -world.domain->min_over_ranks(-world.disp_bound);
   return expired(world.disp_bound + world.radius_growth);
@@ -291,12 +287,10 @@ void step(World<D>& world) {
     ScopedStage<D> t(world, Stage::kContactForces);
     auto& P = world.particles;
     const auto n = static_cast<std::ptrdiff_t>(P.size());
-#pragma omp parallel for num_threads(world.threads) \
-    schedule(static) if (world.threads > 1 && P.size() >= kParallelMin)
-    for (std::ptrdiff_t i = 0; i < n; ++i) {
+    for_each_index(n, world.threads, P.size() >= kParallelMin, [&](std::ptrdiff_t i) {
       P.force[i].setZero();
       P.torque[i] = Dim<D>::zero_rot();
-    }
+    });
     update_collision_shares(world);
     compute_contact_forces(world);
     compute_spar_contacts(world);
