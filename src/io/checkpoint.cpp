@@ -21,8 +21,9 @@ constexpr char kMagic[8] = {'G', 'E', 'O', 'D', 'E', 'M', 'C', 'K'};
 // 2: 2D tangential springs are scalars; 3: one integral sum per stress servo; 4: the
 // periodic cell; 5: a wall's second edge (rectangles); 6: a pull-out's sheet parts (the
 // bend's corner and the row sums of the parts' loads); 7: a decomposed run's skin, ghost width
-// and clump reach.
-constexpr std::uint32_t kFormatVersion = 9;
+// and clump reach; 9: a decomposed triaxial test's samples; 10: a decomposed pull-out's keys and
+// history.
+constexpr std::uint32_t kFormatVersion = 10;
 // Byte order and the sizes the archive relies on, in one word.
 constexpr std::uint32_t kMachineMark =
     0x01020000u | static_cast<std::uint32_t>(sizeof(void*) << 8) | sizeof(double);

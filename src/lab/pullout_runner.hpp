@@ -69,7 +69,7 @@ struct PulloutRun {
   std::uint64_t stage_step = 0;  // steps into the current settle()
   std::uint64_t layer = 0;       // layers deposited in the current stage
   std::uint8_t in_settle = 0;    // the current layer is settling
-  std::uint64_t foundation = 0;  // grains of the foundation (the lowest ids)
+  std::uint64_t foundation = 0;  // the foundation's grains are those of ids below this
   double node_mass_factor = 1.0;
   std::uint64_t total_steps = 0;
   nlohmann::json prep = nlohmann::json::object();
