@@ -1,7 +1,8 @@
-// A lab test of the triaxial kind spread over the ranks of mpirun (docs/parallel.md): the sample
-// under test and the prepared sample every test starts from are each decomposed
-// (scene/scene_domain.hpp), a checkpoint gathers both whole to rank 0, and a test begins from a
-// copy of the prepared sample's domain as from a copy of its world.
+// A lab test spread over the ranks of mpirun (docs/parallel.md): the sample under test and the
+// prepared sample every test starts from are each decomposed (scene/scene_domain.hpp), a
+// checkpoint gathers both whole to rank 0, and a test begins from a copy of the prepared
+// sample's domain as from a copy of its world. The runners that deposit layers (pull-out,
+// interface shear) spread their world at its first layer (grains_added).
 #pragma once
 
 #include <algorithm>
@@ -33,7 +34,17 @@ struct LabDomain {
 
   // Spreads `w` (and `prep`, when given) over the ranks of mpirun, from a checkpoint's keys
   // and history when `resumed`; a decomposed run's checkpoint resumed in one process goes on as
-  // a domain of one rank (the same bits). A periodic cell is refused on several ranks.
+  // a domain of one rank (the same bits).
+  void decompose(World<D>& w, World<D>* prep, const std::string& file, const RunOptions& opt,
+                 bool resumed) {
+    if (!opt.decompose && !resumed) return;
+    const bool local = !opt.decompose;
+    current = decompose_world(w, file, resumed ? &saved : nullptr, local);
+    if (prep) prepared = decompose_world(*prep, file, resumed ? &saved_prepared : nullptr, local);
+    saved = saved_prepared = DomainCheckpoint<D>{};
+  }
+  // The triaxial kind's: as decompose(); a periodic cell is refused on several ranks, and slabs
+  // the compaction will make too thin are refused at the start.
   void spread(World<D>& w, World<D>* prep, const TriaxialSettings& s, const RunOptions& opt,
               bool resumed) {
     if (!opt.decompose && !resumed) return;
@@ -43,11 +54,24 @@ struct LabDomain {
                        "a periodic cell is not spread over MPI ranks yet (docs/parallel.md); run "
                        "it without mpirun");
     }
-    const bool local = !opt.decompose;
-    current = decompose_world(w, s.file, resumed ? &saved : nullptr, local);
+    decompose(w, prep, s.file, opt, resumed);
     if (!resumed) refuse_slabs_too_thin_for_growth(w, s);
-    if (prep) prepared = decompose_world(*prep, s.file, resumed ? &saved_prepared : nullptr, local);
-    saved = saved_prepared = DomainCheckpoint<D>{};
+  }
+  // Grains (and clumps) from `first_grain` (`first_clump`) on were appended by every rank alike
+  // (a dropped layer): each rank keeps its own; a run over ranks is spread at its first layer.
+  void grains_added(World<D>& w, std::size_t first_grain, std::size_t first_clump,
+                    const std::string& file, const RunOptions& opt) {
+    if (current)
+      keep_own_added_grains(w, first_grain, first_clump);
+    else
+      decompose(w, nullptr, file, opt, false);
+  }
+  // A deposit cache would have to carry the keys and history of the run that stored it.
+  static void refuse_deposit_cache(bool cache, const std::string& file, const RunOptions& opt) {
+    if (opt.decompose && cache)
+      throw InputError(file, 0, "soil.deposit_cache",
+                       "a deposit cache is not read or written by a run over MPI ranks yet "
+                       "(docs/parallel.md); leave it out under mpirun");
   }
   // The compaction grows the radii until the grains fill the box, at most to a porosity of
   // 0.1 (discs) or 0.25 (spheres), denser than radius growth packs them: about g = ((1 -
@@ -105,7 +129,7 @@ struct LabDomain {
   template <class Write>
   void after_step(World<D>& w, World<D>* prep, RunCheckpoints& checkpoints,
                   std::uint64_t total_steps, Write&& write) {
-    const bool signal = total_steps % 64 == 0 && current->any_rank(interrupt_signal() != 0);
+    const bool signal = signalled(total_steps);
     const bool due = checkpoints.due(total_steps);
     if (signal || (checkpoints.spec().enabled() ? current->any_rank(due) : due)) {
       DomainWorldOnRank0<D> whole(w, current.get(), saved);
@@ -115,6 +139,18 @@ struct LabDomain {
     }
     saved = saved_prepared = DomainCheckpoint<D>{};
     if (signal) throw Interrupted{interrupt_signal() ? interrupt_signal() : 15, checkpoints.last()};
+  }
+
+  // Whether a signal reached any rank (asked every 64 steps: the ranks agree on the step).
+  bool signalled(std::uint64_t total_steps) {
+    return total_steps % 64 == 0 && current->any_rank(interrupt_signal() != 0);
+  }
+  // Closes a step of a run without checkpoints (io/step_loop.hpp): a signal throws Interrupted,
+  // on every rank of a decomposed run at the same step.
+  bool stop_on_signal(std::uint64_t total_steps) {
+    if (!current) return stopped_by_signal();
+    if (signalled(total_steps)) throw Interrupted{interrupt_signal() ? interrupt_signal() : 15, ""};
+    return false;
   }
 
   // The timing of summary.json: the whole sample's grains and rate (rank 0's times).
@@ -127,5 +163,17 @@ struct LabDomain {
         wall_s > 0.0 ? static_cast<double>(steps) * grains / wall_s : 0.0;
   }
 };
+
+// Runs `body`; an InputError of the decomposition met where no file is known (a list build's
+// check of the slabs) names the scenario's `file` and "mpirun -n".
+template <class Body>
+decltype(auto) naming_decomposition_errors(const std::string& file, Body&& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    if (!e.file().empty()) throw;
+    throw InputError(file, 0, "mpirun -n", e.detail());
+  }
+}
 
 }  // namespace geodem

@@ -113,10 +113,6 @@ struct PulloutRun {
   // run by throwing Interrupted, so the loop never goes on from here.
   bool after_step();
 
-  // Spreads the world over the ranks of mpirun (from a checkpoint's keys and contact history
-  // when `resumed`); a decomposed run's checkpoint resumed in one process goes on as a domain
-  // of one rank (the same bits).
-  void spread(bool resumed);
   // The whole sample's grains: the world's in one process; in a decomposed run every rank's
   // own, gathered in id order on every rank (all ranks call it).
   const Particles<2>& all_grains() {
@@ -133,9 +129,7 @@ struct PulloutRun {
     for (std::size_t i = 0; i < P.size(); ++i) n += !(P.flags[i] & kGhost) && pred(i) ? 1 : 0;
     return domain ? domain.current->count_over_ranks(n) : n;
   }
-  std::size_t grain_count() const {
-    return count_grains([](std::size_t) { return true; });
-  }
+  std::size_t grain_count() const { return grain_and_clump_counts(w)[0]; }
 
   void build();
 

@@ -86,26 +86,13 @@ struct InterfaceShear {
 
   // The whole deposit's grains (a decomposed run: every rank's own, counted over the ranks).
   std::size_t grain_count(const World<2>& world) const { return grain_and_clump_counts(world)[0]; }
-  // Closes a step of a loop (io/step_loop.hpp): a signal throws Interrupted. The ranks of a
-  // decomposed run stop together, at a step they agree on.
-  bool stop_on_signal() {
-    if (!domain) return stopped_by_signal();
-    if (total_steps % 64 == 0 && domain.current->any_rank(interrupt_signal() != 0))
-      throw Interrupted{interrupt_signal() ? interrupt_signal() : 15, ""};
-    return false;
-  }
 
   double fraction(double within) const {
     return (static_cast<double>(test) + within) / static_cast<double>(s.normal_stress.size() + 1);
   }
 
   void build() {
-    Material sheet = s.soil;
-    sheet.name = "sheet";
-    sheet.friction = std::tan(s.interface_friction_deg * kDeg);
-    sheet.rolling_friction = sheet.twisting_friction = 0.0;
-    sheet.normal_cohesion = sheet.shear_cohesion = 0.0;
-    w.materials = {s.soil, s.wall, sheet};
+    w.materials = deposit_materials(s.soil, s.wall, s.interface_friction_deg);
     box.length = s.box_length;
     box.thickness = s.thickness;
     box.element_length = s.element_length;
@@ -130,7 +117,8 @@ struct InterfaceShear {
     std::uint64_t k = 0;
     step_loop(
         w, total_steps, [] { return true; }, [&] { return ++k % every == 0; },
-        [&] { return settled(stage, plate, k, every); }, [&] { return stop_on_signal(); });
+        [&] { return settled(stage, plate, k, every); },
+        [&] { return domain.stop_on_signal(total_steps); });
   }
 
   // After a step of settle(): the progress line on measured steps; true when at rest.
@@ -170,10 +158,7 @@ struct InterfaceShear {
       // (a decomposed run: every rank drops the same layer and keeps its own grains of it)
       const std::size_t before = w.particles.size(), clumps_before = w.clumps.size();
       drop_layer(w, s, s.file, kinds, areas, rng, 0.0, s.box_length, from, dense);
-      if (domain)
-        keep_own_added_grains(w, before, clumps_before);
-      else if (opt.decompose)  // (the first layer of a run over ranks)
-        domain.current = decompose_world<2>(w, s.file, nullptr, false);
+      domain.grains_added(w, before, clumps_before, s.file, opt);
       settle(stage + " layer " + std::to_string(++layer), nullptr);
     }
     const auto& P = w.particles;
@@ -326,7 +311,7 @@ struct InterfaceShear {
                           fraction(u / s.max_displacement));
           return false;
         },
-        [&] { return stop_on_signal(); });
+        [&] { return domain.stop_on_signal(total_steps); });
     if (s.vtk) vtk.write(w);
     const InterfaceTest t = interface_test(c, s.residual_from);
     return {{"normal_stress_target", sigma_n},
@@ -372,10 +357,7 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
   const DepositCache cache(s.deposit_cache, "interface_shear_deposit", s.resolved,
                            {"shear.normal_stress", "output", "title", "seeds"});
   std::string cache_use;
-  if (opt.decompose && cache.enabled())
-    throw InputError(s.file, 0, "soil.deposit_cache",
-                     "a deposit cache is not read or written by a run over MPI ranks yet "
-                     "(docs/parallel.md); leave it out under mpirun");
+  LabDomain<2>::refuse_deposit_cache(cache.enabled(), s.file, opt);
   if (auto c = cache.load()) {
     // The pulled sheet is laid before the world's state goes back onto it.
     if (run.soil_base())
@@ -440,11 +422,10 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
 // written so far is whole); it is run again from the start (no checkpoints).
 nlohmann::json run_interface_shear(const InterfaceShearSettings& s, const RunOptions& opt) {
   try {
-    return summarise_interruption("interface_shear", s.resolved, opt,
-                                  [&] { return run_tests(s, opt); });
-  } catch (const InputError& e) {  // (the decomposition's, met in a build: name the file)
-    if (!e.file().empty()) throw;
-    throw InputError(s.file, 0, "mpirun -n", e.detail());
+    return naming_decomposition_errors(s.file, [&] {
+      return summarise_interruption("interface_shear", s.resolved, opt,
+                                    [&] { return run_tests(s, opt); });
+    });
   } catch (const InstabilityError& e) {
     const std::string why =
         std::string(e.what()) +

@@ -69,19 +69,8 @@ bool PulloutRun::after_step() {
   return false;
 }
 
-void PulloutRun::spread(bool resumed) {
-  if (!opt.decompose && !resumed) return;
-  domain.current = decompose_world(w, s.file, resumed ? &domain.saved : nullptr, !opt.decompose);
-  domain.saved = DomainCheckpoint<2>{};
-}
-
 void PulloutRun::build() {
-  Material sheet = s.soil;
-  sheet.name = "sheet";
-  sheet.friction = std::tan(s.interface_friction_deg * kDeg);
-  sheet.rolling_friction = sheet.twisting_friction = 0.0;
-  sheet.normal_cohesion = sheet.shear_cohesion = 0.0;
-  w.materials = {s.soil, s.wall, sheet};
+  w.materials = deposit_materials(s.soil, s.wall, s.interface_friction_deg);
   auto plane = [&](const char* name, Vec point, Vec normal, double area) {
     Wall<2> wall;
     wall.name = name;
@@ -106,10 +95,7 @@ void PulloutRun::start() {
   prepare_output_dir(opt.out_dir);
   if (root) prep_csv.open(prep_path(), kPrepColumns);
   phase = Phase::kFoundation;
-  if (opt.decompose && deposit_cache.enabled())
-    throw InputError(s.file, 0, "soil.deposit_cache",
-                     "a deposit cache is not read or written by a run over MPI ranks yet "
-                     "(docs/parallel.md); leave it out under mpirun");
+  LabDomain<2>::refuse_deposit_cache(deposit_cache.enabled(), s.file, opt);
   if (auto c = deposit_cache.load()) {
     // The foundation as the cache holds it; the run goes on from the end of its deposit.
     DepositCache::restore(
@@ -140,7 +126,7 @@ void PulloutRun::resume() {
     }
   }
   checkpoints.resume_clock(wall_before);
-  spread(domain.decomposed);
+  domain.decompose(w, nullptr, s.file, opt, domain.decomposed);
 }
 
 void PulloutRun::prep_row(double stage, double unb) {
@@ -195,10 +181,7 @@ void PulloutRun::deposit_to(double height, double x0, double x1, const std::stri
       // (a decomposed run: every rank drops the same layer and keeps its own grains of it)
       const std::size_t before = w.particles.size(), clumps_before = w.clumps.size();
       drop_layer(w, s, s.file, kinds, areas, rng, x0, x1, base, dense);
-      if (domain)
-        keep_own_added_grains(w, before, clumps_before);
-      else
-        spread(false);  // (the first layer of a run over ranks)
+      domain.grains_added(w, before, clumps_before, s.file, opt);
       ++layer;
       in_settle = 1;
     }
@@ -351,12 +334,7 @@ namespace {
 
 nlohmann::json run_pullout_test(const PulloutSettings& s, const RunOptions& opt) {
   PulloutRun run(s, opt);
-  try {
-    run_lab_phases(run, "pullout", s.resolved, opt);
-  } catch (const InputError& e) {  // (the decomposition's, met in a build: name the file)
-    if (!e.file().empty()) throw;
-    throw InputError(s.file, 0, "mpirun -n", e.detail());
-  }
+  naming_decomposition_errors(s.file, [&] { run_lab_phases(run, "pullout", s.resolved, opt); });
   const World<2>& w = run.w;
   const Pull& u = run.pull;
   const Particles<2>& grains = run.all_grains();

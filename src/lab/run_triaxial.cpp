@@ -472,12 +472,7 @@ template <int D>
 nlohmann::json run(const TriaxialSettings& s, const RunOptions& opt) {
   Lab<D> lab(s, opt);
   const std::string kind = lab_kind_name(s.kind);
-  try {
-    run_lab_phases(lab, kind, s.resolved, opt);
-  } catch (const InputError& e) {  // (the decomposition's, met in a build: name the file)
-    if (!e.file().empty()) throw;
-    throw InputError(s.file, 0, "mpirun -n", e.detail());
-  }
+  naming_decomposition_errors(s.file, [&] { run_lab_phases(lab, kind, s.resolved, opt); });
   const nlohmann::json results = lab_run_results(s.kind, lab.prep, lab.tests);
   nlohmann::json timing = timing_json(lab.w, lab.elapsed(), lab.total_steps, opt.threads);
   if (lab.domain) lab.domain.add_timing(timing, lab.w, lab.total_steps);

@@ -24,6 +24,18 @@ namespace geodem {
 // Material indices of these kinds' worlds: soil, smooth walls, sheet.
 enum : std::uint16_t { kDepositSoil = 0, kDepositWalls = 1, kDepositSheet = 2 };
 
+// The materials of these kinds' worlds, in the order above: the sheet's is the soil's with the
+// local interface friction `interface_deg`, without rolling resistance or cohesion.
+inline std::vector<Material> deposit_materials(const Material& soil, const Material& walls,
+                                               double interface_deg) {
+  Material sheet = soil;
+  sheet.name = "sheet";
+  sheet.friction = std::tan(interface_deg * (std::numbers::pi / 180.0));
+  sheet.rolling_friction = sheet.twisting_friction = 0.0;
+  sheet.normal_cohesion = sheet.shear_cohesion = 0.0;
+  return {soil, walls, sheet};
+}
+
 // Sets the soil's contact friction; its rolling friction follows in proportion (none
 // while the friction is 0).
 inline void set_soil_friction(World<2>& w, const Material& soil, double mu) {

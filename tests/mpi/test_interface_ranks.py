@@ -19,7 +19,7 @@ import sys
 import tempfile
 import time
 
-from test_scene_ranks import check, failures, history, mpi_launch, pieces
+from test_scene_ranks import check, failures, history, mpi_launch, pieces, signal_run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -80,12 +80,7 @@ def main() -> int:
         p = subprocess.Popen(args(2, soil, out), env=env, stdout=subprocess.DEVNULL,
                              stderr=subprocess.PIPE, text=True)
         time.sleep(3.0)
-        for pid in os.listdir("/proc"):  # the ranks and mpirun of this run
-            try:
-                if pid.isdigit() and out.encode() in open(f"/proc/{pid}/cmdline", "rb").read():
-                    os.kill(int(pid), signal.SIGTERM)
-            except OSError:
-                pass
+        signal_run(out, signal.SIGTERM)
         _, err = p.communicate(timeout=120)
         summary = os.path.join(out, "summary.json")
         status = json.load(open(summary))["status"] if os.path.exists(summary) else None

@@ -19,9 +19,8 @@ import signal
 import subprocess
 import sys
 import tempfile
-import time
 
-from test_scene_ranks import check, failures, history, mpi_launch, pieces
+from test_scene_ranks import check, failures, history, mpi_launch, pieces, stop_at_checkpoint
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENARIO = os.path.join(HERE, "pullout_kind2d.toml")
@@ -36,6 +35,12 @@ def outputs(out):
     for name in FILES:
         got[name] = open(os.path.join(out, name)).read()
     return got
+
+
+def final_ids(got):
+    """The ids of the grains of the final state file (`outputs`)."""
+    return [int(float(line.split(",")[0]))
+            for line in got["states/grains_final.csv"].splitlines()[1:]]
 
 
 def main() -> int:
@@ -60,8 +65,7 @@ def main() -> int:
         else:
             res, prep = ref["results"], ref["results"]["preparation"]
             timing = json.load(open(os.path.join(out, "summary.json")))["timing"]
-            final = [int(float(line.split(",")[0]))
-                     for line in ref["states/grains_final.csv"].splitlines()[1:]]
+            final = final_ids(ref)
             check(timing["ranks"] == 1 and timing["particles"] == res["grains"] == len(final) and
                   prep["bonds"] > 0 and prep["spilled_grains"] > 0 and res["T_max"] > 0.0 and
                   len(ref["history"]) > 10,
@@ -89,26 +93,10 @@ def main() -> int:
             out = os.path.join(tmp, f"pullout.{sig.name}")
             args = [mpirun, "-n", str(first), geodem, "run", SCENARIO, "--out", out, "--quiet",
                     "--set", "checkpoint.every_steps=5000"]
-            p = subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL,
-                                 stderr=subprocess.DEVNULL)
-            ckdir = os.path.join(out, "checkpoint")
-
-            def newest():  # the step of the newest checkpoint written
-                names = os.listdir(ckdir) if os.path.isdir(ckdir) else []
-                return max([int(n[11:23]) for n in names if n.endswith(".bin")], default=0)
-            while p.poll() is None and newest() < at:
-                time.sleep(0.005)
-            if p.poll() is not None:
+            ck = stop_at_checkpoint(args, env, out, at, sig)
+            if ck is None:
                 check(False, f"the pull-out on {first} ranks ended before it was stopped")
                 continue
-            for pid in os.listdir("/proc"):  # the ranks and mpirun of this run
-                try:
-                    if pid.isdigit() and out.encode() in open(f"/proc/{pid}/cmdline", "rb").read():
-                        os.kill(int(pid), sig)
-                except OSError:
-                    pass
-            p.wait()
-            ck = sorted(os.listdir(ckdir))
             launcher = [mpirun, "-n", str(then)] if then else []
             r = subprocess.run(launcher + [geodem, "run", SCENARIO, "--resume", out, "--quiet",
                                            "--set", "checkpoint.every_steps=5000"],
@@ -119,8 +107,7 @@ def main() -> int:
                         f"uninterrupted run {'' if r.returncode == 0 else r.stderr}")
             if same:
                 count, ids = pieces(out)
-                final = [int(float(line.split(",")[0]))
-                         for line in ref["states/grains_final.csv"].splitlines()[1:]]
+                final = final_ids(ref)
                 check(count == max(then, 1) and sorted(ids) == final,
                       f"its last VTK frame in {count} pieces holding every grain once")
 

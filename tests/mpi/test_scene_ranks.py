@@ -71,6 +71,36 @@ def pieces(out, ext=".pvtu"):
     return count, ids
 
 
+def signal_run(out, sig):
+    """Sends `sig` to the ranks and mpirun of the run writing to `out` (the processes whose
+    command line names that folder)."""
+    for pid in os.listdir("/proc"):
+        try:
+            if pid.isdigit() and out.encode() in open(f"/proc/{pid}/cmdline", "rb").read():
+                os.kill(int(pid), sig)
+        except OSError:
+            pass
+
+
+def stop_at_checkpoint(args, env, out, at, sig):
+    """Starts the run `args` (writing to `out`), sends it `sig` once its checkpoint of step `at`
+    or later is written, and waits for it: the checkpoint files then, or None when the run ended
+    first."""
+    p = subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    ckdir = os.path.join(out, "checkpoint")
+
+    def newest():  # the step of the newest checkpoint written
+        names = os.listdir(ckdir) if os.path.isdir(ckdir) else []
+        return max([int(n[11:23]) for n in names if n.endswith(".bin")], default=0)
+    while p.poll() is None and newest() < at:
+        time.sleep(0.005)
+    if p.poll() is not None:
+        return None
+    signal_run(out, sig)
+    p.wait()
+    return sorted(os.listdir(ckdir))
+
+
 def mpi_launch(geodem):
     """mpirun and its environment for oversubscribed ranks (as root too); None without mpirun
     or without MPI in geodem."""
@@ -181,27 +211,11 @@ def main() -> int:
             out = os.path.join(tmp, f"{scenario}.killed")
             args = [mpirun, "-n", str(first), geodem, "run", os.path.join(HERE, scenario),
                     "--out", out, "--quiet", "--set", "checkpoint.every_steps=1000"]
-            p = subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL,
-                                 stderr=subprocess.DEVNULL)
-            hist, ckdir = os.path.join(out, "history.csv"), os.path.join(out, "checkpoint")
-            def newest():  # the step of the newest checkpoint written
-                names = os.listdir(ckdir) if os.path.isdir(ckdir) else []
-                return max([int(n[11:23]) for n in names if n.endswith(".bin")], default=0)
-            while p.poll() is None and newest() < at:  # killed some thousand steps in
-                time.sleep(0.005)
-            if p.poll() is not None:
+            hist = os.path.join(out, "history.csv")
+            ck = stop_at_checkpoint(args, env, out, at, sig)  # killed some thousand steps in
+            if ck is None:
                 check(False, f"{scenario} on {first} ranks ended before it was killed")
                 continue
-            # The ranks themselves (and mpirun): the processes whose command line names this
-            # run's output folder.
-            for pid in os.listdir("/proc"):
-                try:
-                    if pid.isdigit() and out.encode() in open(f"/proc/{pid}/cmdline", "rb").read():
-                        os.kill(int(pid), sig)
-                except OSError:
-                    pass
-            p.wait()
-            ck = sorted(os.listdir(os.path.join(out, "checkpoint")))
             # (then = 0: one process without mpirun goes on as a domain of one rank)
             launcher = [mpirun, "-n", str(then)] if then else []
             r = subprocess.run(launcher + [geodem, "run", os.path.join(HERE, scenario),

@@ -21,9 +21,8 @@ import signal
 import subprocess
 import sys
 import tempfile
-import time
 
-from test_scene_ranks import check, failures, history, mpi_launch, pieces
+from test_scene_ranks import check, failures, history, mpi_launch, pieces, stop_at_checkpoint
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -162,26 +161,10 @@ def main() -> int:
             scenario = os.path.join(HERE, name)
             args = [mpirun, "-n", str(first), geodem, "run", scenario, "--out", out, "--quiet",
                     "--set", "checkpoint.every_steps=5000"]
-            p = subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL,
-                                 stderr=subprocess.DEVNULL)
-            ckdir = os.path.join(out, "checkpoint")
-
-            def newest():  # the step of the newest checkpoint written
-                names = os.listdir(ckdir) if os.path.isdir(ckdir) else []
-                return max([int(n[11:23]) for n in names if n.endswith(".bin")], default=0)
-            while p.poll() is None and newest() < at:
-                time.sleep(0.005)
-            if p.poll() is not None:
+            ck = stop_at_checkpoint(args, env, out, at, sig)
+            if ck is None:
                 check(False, f"{name} on {first} ranks ended before it was killed")
                 continue
-            for pid in os.listdir("/proc"):  # the ranks and mpirun of this run
-                try:
-                    if pid.isdigit() and out.encode() in open(f"/proc/{pid}/cmdline", "rb").read():
-                        os.kill(int(pid), sig)
-                except OSError:
-                    pass
-            p.wait()
-            ck = sorted(os.listdir(ckdir))
             launcher = [mpirun, "-n", str(then)] if then else []
             r = subprocess.run(launcher + [geodem, "run", scenario, "--resume", out, "--quiet",
                                            "--set", "checkpoint.every_steps=5000"],
