@@ -41,8 +41,10 @@ class ThreadComm final : public DomainComm {
     const auto r = static_cast<std::size_t>(rank_);
     hub_.down[r] = to_lower, hub_.up[r] = to_upper;
     hub_.sync.arrive_and_wait();
-    from_lower = rank_ > 0 ? hub_.up[r - 1] : Bytes{};
-    from_upper = rank_ + 1 < hub_.size ? hub_.down[r + 1] : Bytes{};
+    const bool closed = ring && hub_.size > 1;  // a periodic cell's slabs
+    const auto last = static_cast<std::size_t>(hub_.size - 1);
+    from_lower = rank_ > 0 ? hub_.up[r - 1] : closed ? hub_.up[last] : Bytes{};
+    from_upper = r < last ? hub_.down[r + 1] : closed ? hub_.down[0] : Bytes{};
     hub_.sync.arrive_and_wait();
   }
   double max(double here) override { return reduce(here, true); }

@@ -195,11 +195,13 @@ int run_main(int argc, char** argv) {
     }
     return kFailure;
   } catch (const std::exception& e) {
-    if (geodem::comm::size() > 1)
-      std::fprintf(stderr, "error on rank %d: %s\n", geodem::comm::rank(), e.what());
-    else
+    if (geodem::comm::size() == 1) {
       std::fprintf(stderr, "error: %s\n", e.what());
-    return kFailure;
+      return kFailure;
+    }
+    // Met by this rank alone, maybe: the others are ended too rather than left waiting.
+    std::fprintf(stderr, "error on rank %d: %s\n", geodem::comm::rank(), e.what());
+    return geodem::comm::abort_all(kFailure);
   }
 }
 }  // namespace

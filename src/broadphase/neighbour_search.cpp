@@ -209,7 +209,8 @@ void build_neighbour_list(World<D>& world) {
   };
   reset_rows();
 
-  if (world.cell.periodic && n > 0) {
+  // (a decomposed cell's ranks search together: their reach is a reduction)
+  if (world.cell.periodic && (n > 0 || world.domain)) {
     wrap_into_cell(world);
     if (world.sort_interval > 0 &&
         L.builds % static_cast<std::uint64_t>(world.sort_interval) == 0) {

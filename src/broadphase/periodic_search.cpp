@@ -70,6 +70,9 @@ PeriodicBins& bin_grains(World<D>& world) {
   const std::size_t n = P.size();
   double rmax = 0.0;
   for (double r : P.radius) rmax = std::max(rmax, r);
+  // A decomposed cell (domain/slab_domain.hpp): the whole domain's, so that every rank takes
+  // the same reach (the list's expiry depends on it).
+  if (world.domain) rmax = -world.domain->min_over_ranks(-rmax);
   const double reach = 2.0 * rmax + world.nlist.skin;
   cell.reach_at_build = reach;
   const Vec widths = cell.widths();
@@ -135,9 +138,12 @@ void list_periodic_pairs(World<D>& world) {
 
   const bool clumps = !P.clump.empty();
   const int zr = D == 3 ? 1 : 0;
-  // Calls pair(j, image) for each grain j > i within reach of grain i, in bin order.
+  const std::uint8_t* flags = P.flags.data();
+  // Calls pair(j, image) for each grain j > i within reach of grain i, in bin order. A ghost
+  // (domain/slab_domain.hpp) pairs with the rank's own grains only.
   auto scan = [&](std::size_t i, auto&& pair) {
     const Vec xi = P.pos[i];
+    const bool ghost = flags[i] & kGhost;
     const double ri = P.radius[i] + L.skin;
     const std::uint32_t ci = clumps ? P.clump[i] : kNoClump;
     for (int dz = -zr; dz <= zr; ++dz)
@@ -161,6 +167,7 @@ void list_periodic_pairs(World<D>& world) {
             const std::uint32_t j = sorted[s];
             if (j <= i) continue;
             if (ci != kNoClump && P.clump[j] == ci) continue;  // members of one clump
+            if (ghost && (flags[j] & kGhost)) continue;
             // The bins hold the grains' images inside the cell: from grain i's own position,
             // grain j is seen through the bins' image plus i's and less j's offset.
             CellImage seen = image;

@@ -174,8 +174,12 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
         } else if (!image[k].home()) [[unlikely]] {
           t.cell_fabric += cell.shift(image[k]) * f.transpose();
         }
-        t.cell_stiffness +=
-            normal_stiffness(*law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
+        const Vec kc = normal_stiffness(*law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
+        t.cell_stiffness += kc;
+        if (t.exact.on && !(P.flags[i] & kGhost)) {  // a decomposed cell (slab_tally.hpp)
+          t.exact.add_cell_stiffness(kc);
+          if (!image[k].home()) t.exact.add_cell_fabric(cell.shift(image[k]), f);
+        }
       }
       if constexpr (Measure) {
         const double energy = fn > 0.0 ? normal_energy(*law, ri, rj, fn, delta) : 0.0;

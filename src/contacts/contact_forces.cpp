@@ -174,8 +174,12 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
           } else if (imaged) [[unlikely]] {
             t.cell_fabric += cell.shift(image[k]) * f.transpose();
           }
-          t.cell_stiffness +=
-              normal_stiffness(law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
+          const Vec kc = normal_stiffness(law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
+          t.cell_stiffness += kc;
+          if (t.exact.on && !(P.flags[i] & kGhost)) {
+            t.exact.add_cell_stiffness(kc);
+            if (imaged) t.exact.add_cell_fabric(cell.shift(image[k]), f);
+          }
         }
         if constexpr (Measure) {
           t.stats.fabric_stress += d * f.transpose();
@@ -207,6 +211,24 @@ void cell_fabric_of_grains(World<D>& world, std::vector<SlabTally<D>>& tallies) 
             });
 }
 
+// A decomposed cell's exact part of the same sum (ExactTally): the rank's own grains' x F^T,
+// a clump member's x its clump's centre (cell_stress takes that correction in one process).
+template <int D>
+void exact_cell_fabric_of_grains(World<D>& world, std::vector<SlabTally<D>>& tallies) {
+  const auto& P = world.particles;
+  const auto& C = world.clumps;
+  const bool clumps = !P.clump.empty();
+  SlabTally<D>* tally = tallies.data();
+  for_slabs(world.slab_plan(P.size()), world.threads,
+            [&](std::size_t s, std::size_t first, std::size_t last) {
+              for (std::size_t i = first; i < last; ++i) {
+                if (P.flags[i] & kGhost) continue;
+                const bool member = clumps && P.clump[i] != kNoClump;
+                tally[s].exact.add_cell_fabric(member ? C.pos[P.clump[i]] : P.pos[i], P.force[i]);
+              }
+            });
+}
+
 template <int D, bool Measure, bool Extras, bool Periodic>
 void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   SlabTally<D>* tally = tallies.data();
@@ -231,6 +253,9 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
     P.torque[c.body] += c.b;
   });
   if constexpr (Periodic && kFabricByGrain<D>) cell_fabric_of_grains(world, tallies);
+  if constexpr (Periodic) {
+    if (world.domain) exact_cell_fabric_of_grains(world, tallies);
+  }
 }
 
 template <int D, bool Measure, bool Extras>
@@ -320,8 +345,8 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
 
 }  // namespace
 
-// A decomposed world: the walls' sums and the contact statistics are every rank's exact sums
-// added over ranks (the rank's own, plain sums above are replaced).
+// A decomposed world: the walls' sums, the contact statistics and a periodic cell's sums are
+// every rank's exact sums added over ranks (the rank's own, plain sums above are replaced).
 template <int D>
 void reduce_over_ranks(World<D>& world, std::vector<SlabTally<D>>& tallies, std::size_t slabs) {
   using Tally = ExactTally<D>;
@@ -329,12 +354,15 @@ void reduce_over_ranks(World<D>& world, std::vector<SlabTally<D>>& tallies, std:
   const bool measure = world.measure_this_step;
   static thread_local std::vector<ExactSum> sums;  // kept: the step allocates nothing
   // (last: the ranks that met an overlap beyond the limit, so that every rank stops)
-  const std::size_t flag = nw * Tally::kPerWall + (measure ? Tally::kStats : 0);
+  const std::size_t at_cell = nw * Tally::kPerWall + (measure ? Tally::kStats : 0);
+  const bool periodic = world.cell.periodic;
+  const std::size_t flag = at_cell + (periodic ? Tally::kCell : 0);
   sums.assign(flag + 1, ExactSum{});
   for (std::size_t s = 0; s < slabs; ++s) {
     const auto& t = tallies[s].exact;
     for (std::size_t k = 0; k < t.wall.size(); ++k) sums[k].add(t.wall[k]);
     for (std::size_t k = 0; k < t.stats.size(); ++k) sums[nw * Tally::kPerWall + k].add(t.stats[k]);
+    for (std::size_t k = 0; k < t.cell.size(); ++k) sums[at_cell + k].add(t.cell[k]);
   }
   for (std::size_t s = 0; s < slabs; ++s)
     if (tallies[s].overlap_offender >= 0) sums[flag].add(1.0);
@@ -345,6 +373,13 @@ void reduce_over_ranks(World<D>& world, std::vector<SlabTally<D>>& tallies, std:
       world.walls[w].force[a] = sums[w * Tally::kPerWall + static_cast<std::size_t>(a)].value();
     world.walls[w].stiffness = sums[w * Tally::kPerWall + D].value();
     world.walls[w].dashpot = sums[w * Tally::kPerWall + D + 1].value();
+  }
+  if (periodic) {
+    for (int a = 0; a < D; ++a) {
+      for (int b = 0; b < D; ++b)
+        world.cell_fabric(a, b) = sums[at_cell + static_cast<std::size_t>(a * D + b)].value();
+      world.cell_stiffness[a] = sums[at_cell + static_cast<std::size_t>(D * D + a)].value();
+    }
   }
   if (!measure) return;
   const ExactSum* st = sums.data() + nw * Tally::kPerWall;
@@ -374,7 +409,7 @@ void compute_contact_forces(World<D>& world) {
     t.wall_dashpot.assign(nw, 0.0);
     t.cell_stiffness = Vec::Zero();
     t.cell_fabric.setZero();
-    t.exact.reset(world.domain != nullptr, nw, world.measure_this_step);
+    t.exact.reset(world.domain != nullptr, nw, world.measure_this_step, world.cell.periodic);
   }
   // One instantiation per combination, so that a plain packing pays for no option.
   auto run = [&]<bool Measure, bool Extras>() {

@@ -13,18 +13,30 @@ namespace geodem {
 // A decomposed world's sums (World::domain), taken exactly so that they do not depend on how
 // the grains are shared between ranks (docs/parallel.md): per wall its force (D components),
 // stiffness and dashpot; on measuring steps the contact statistics, each contact counted on
-// the rank that owns the first grain of its row.
+// the rank that owns the first grain of its row. A periodic cell's sum of d f^T and its
+// stiffness every step: d f^T as the owned grains' x F^T (a clump member's x its clump's
+// centre) plus each imaged contact's shift f^T, counted like the statistics.
 template <int D>
 struct ExactTally {
   using Vec = typename Dim<D>::Vec;
-  static constexpr std::size_t kPerWall = D + 2, kStats = D * D + 4;
+  static constexpr std::size_t kPerWall = D + 2, kStats = D * D + 4, kCell = D * D + D;
   bool on = false;
   std::vector<ExactSum> wall, stats;  // stats: fabric (row-major), |f|, energy, counts
+  std::vector<ExactSum> cell;         // periodic cell: d f^T (row-major), then stiffness
 
-  void reset(bool domain, std::size_t walls, bool measure) {
+  void reset(bool domain, std::size_t walls, bool measure, bool periodic) {
     on = domain;
     wall.assign(on ? walls * kPerWall : 0, ExactSum{});
     stats.assign(on && measure ? kStats : 0, ExactSum{});
+    cell.assign(on && periodic ? kCell : 0, ExactSum{});
+  }
+  // x f^T into the cell's d f^T.
+  void add_cell_fabric(const Vec& x, const Vec& f) {
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) cell[static_cast<std::size_t>(a * D + b)].add(x[a] * f[b]);
+  }
+  void add_cell_stiffness(const Vec& k) {
+    for (int a = 0; a < D; ++a) cell[static_cast<std::size_t>(D * D + a)].add(k[a]);
   }
   void add_wall(std::size_t w, const Vec& f, double stiffness, double dashpot) {
     for (int a = 0; a < D; ++a) wall[w * kPerWall + static_cast<std::size_t>(a)].add(f[a]);

@@ -26,26 +26,28 @@ class MpiDomainComm final : public DomainComm {
   MpiDomainComm() : comm_(comm::group_communicator()) {
     MPI_Comm_rank(comm_, &rank_);
     MPI_Comm_size(comm_, &size_);
-    lower_ = rank_ > 0 ? rank_ - 1 : MPI_PROC_NULL;
-    upper_ = rank_ + 1 < size_ ? rank_ + 1 : MPI_PROC_NULL;
   }
   int rank() const override { return rank_; }
   int size() const override { return size_; }
 
   void exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower,
                 Bytes& from_upper) override {
+    // The neighbours: none past the ends, unless the slabs close in a ring (of two ranks or more).
+    const bool ring_here = ring && size_ > 1;
+    const int lower = rank_ > 0 ? rank_ - 1 : ring_here ? size_ - 1 : MPI_PROC_NULL;
+    const int upper = rank_ + 1 < size_ ? rank_ + 1 : ring_here ? 0 : MPI_PROC_NULL;
     // Sizes first (upwards, then downwards), then the bytes.
     std::uint64_t up_n = to_upper.size(), down_n = to_lower.size(), from_lo = 0, from_up = 0;
-    MPI_Sendrecv(&up_n, 1, MPI_UINT64_T, upper_, 0, &from_lo, 1, MPI_UINT64_T, lower_, 0, comm_,
+    MPI_Sendrecv(&up_n, 1, MPI_UINT64_T, upper, 0, &from_lo, 1, MPI_UINT64_T, lower, 0, comm_,
                  MPI_STATUS_IGNORE);
-    MPI_Sendrecv(&down_n, 1, MPI_UINT64_T, lower_, 1, &from_up, 1, MPI_UINT64_T, upper_, 1, comm_,
+    MPI_Sendrecv(&down_n, 1, MPI_UINT64_T, lower, 1, &from_up, 1, MPI_UINT64_T, upper, 1, comm_,
                  MPI_STATUS_IGNORE);
     from_lower.resize(from_lo);
     from_upper.resize(from_up);
-    MPI_Sendrecv(to_upper.data(), count_of(up_n), MPI_BYTE, upper_, 2, from_lower.data(),
-                 count_of(from_lo), MPI_BYTE, lower_, 2, comm_, MPI_STATUS_IGNORE);
-    MPI_Sendrecv(to_lower.data(), count_of(down_n), MPI_BYTE, lower_, 3, from_upper.data(),
-                 count_of(from_up), MPI_BYTE, upper_, 3, comm_, MPI_STATUS_IGNORE);
+    MPI_Sendrecv(to_upper.data(), count_of(up_n), MPI_BYTE, upper, 2, from_lower.data(),
+                 count_of(from_lo), MPI_BYTE, lower, 2, comm_, MPI_STATUS_IGNORE);
+    MPI_Sendrecv(to_lower.data(), count_of(down_n), MPI_BYTE, lower, 3, from_upper.data(),
+                 count_of(from_up), MPI_BYTE, upper, 3, comm_, MPI_STATUS_IGNORE);
   }
   double max(double here) override {
     double out = here;
@@ -103,7 +105,7 @@ class MpiDomainComm final : public DomainComm {
 
  private:
   MPI_Comm comm_;
-  int rank_ = 0, size_ = 1, lower_ = 0, upper_ = 0;
+  int rank_ = 0, size_ = 1;
   std::vector<std::int64_t> limbs_, total_;  // kept: a step's reduction allocates nothing
 };
 

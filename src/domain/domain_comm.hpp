@@ -19,9 +19,12 @@ class DomainComm {
   virtual int rank() const = 0;
   virtual int size() const = 0;
   // Sends `to_lower` to rank - 1 and `to_upper` to rank + 1 (ignored where there is no such
-  // rank) and receives what they sent this rank (left empty where there is none).
+  // rank) and receives what they sent this rank (left empty where there is none). With `ring`
+  // (a periodic cell's slabs) the first and last ranks are neighbours: rank 0's lower is the
+  // last rank (with two ranks, each is the other's lower and upper; the messages stay apart).
   virtual void exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower,
                         Bytes& from_upper) = 0;
+  bool ring = false;
   virtual double max(double here) = 0;
   virtual double min(double here) = 0;
   // Adds every rank's sums element by element, exactly: the result does not depend on how the

@@ -6,7 +6,8 @@
 // partners' key order, and keys are retaken every sort_interval builds, so the bits depend on
 // the steps at which the list is built. The resumed run must build at the same steps as the
 // run it continues: its list is made from the positions of the last build (each grain's
-// pos_at_build, the walls moved back by their displacement since), the build count is that
+// pos_at_build, the walls moved back by their displacement since, a periodic cell's shape
+// then), the build count is that
 // build's, the walls' displacements since it are kept, and the first step measures the grains'
 // (the bound each rank kept on them is its own), so that the list expires when it would have.
 #include <algorithm>
@@ -101,6 +102,8 @@ void SlabDomain<D>::rebuild_as_saved(World<D>& world) {
   std::swap(world.spars.pos, world.spars.pos_at_build);  // the chains' nodes likewise
   const std::vector<Wall<D>> walls = world.walls;        // put back bit for bit below
   for (auto& w : world.walls) w.point -= w.displacement, w.end -= w.displacement;
+  const auto h = world.cell.h;  // a periodic cell as it was at that build
+  world.cell.h = world.cell.h_at_build;
   const double radius_growth = world.radius_growth;
   const std::uint64_t builds = world.nlist.builds;
   // (the count before that build: keys are retaken from those positions if it retook them)
@@ -111,6 +114,7 @@ void SlabDomain<D>::rebuild_as_saved(World<D>& world) {
   P.pos = std::move(now);
   world.spars.pos = std::move(nodes_now);
   world.walls = walls;
+  world.cell.h = h;
   // The bound on the grains' displacement since that build is each rank's own (from its
   // grains' speeds) and the checkpoint has rank 0's: the first step measures them instead.
   world.disp_bound = std::numeric_limits<double>::infinity();

@@ -9,6 +9,7 @@
 
 #include "base/error.hpp"
 #include "broadphase/list_history.hpp"
+#include "broadphase/periodic_search.hpp"
 #include "world/world_editing.hpp"
 
 namespace geodem {
@@ -41,12 +42,13 @@ template <int D>
 std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
                                                          std::shared_ptr<DomainComm> comm,
                                                          const DomainCheckpoint<D>* resumed) {
-  auto refuse = [](const std::string& what) {
-    throw InputError("", 0, "", what + " (docs/parallel.md)");
-  };
-  if (world.cell.periodic) refuse("a periodic cell is not distributed over ranks yet");
   auto d = std::shared_ptr<SlabDomain>(new SlabDomain(std::move(comm)));
   auto& P = world.particles;
+  d->periodic_ = world.cell.periodic;
+  d->comm_->ring = d->periodic_;
+  // (a resumed run keeps its positions: its grains are brought into the cell at its builds)
+  if (d->periodic_ && !resumed) wrap_into_cell(world);
+  if (d->periodic_) d->take_cell(world);
   const std::size_t n = P.size();
   const int ranks = d->comm_->size(), me = d->comm_->rank();
   double rmax = 0.0;
@@ -63,13 +65,13 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   d->ghost_width_ = 2.0 * rmax + d->skin_ + d->extent_;
   if (resumed)
     d->skin_ = resumed->skin, d->ghost_width_ = resumed->ghost_width, d->extent_ = resumed->extent;
-  // Cuts at equal grain counts along x.
+  // Cuts at equal grain counts along x (a periodic cell: along its fractional coordinate).
   std::vector<double> xs(n);
-  for (std::size_t i = 0; i < n; ++i) xs[i] = P.pos[i].x();
+  for (std::size_t i = 0; i < n; ++i) xs[i] = d->across(P.pos[i]);
   std::sort(xs.begin(), xs.end());
   const double inf = std::numeric_limits<double>::infinity();
-  d->cuts_.assign(static_cast<std::size_t>(ranks) + 1, -inf);
-  d->cuts_.back() = inf;
+  d->cuts_.assign(static_cast<std::size_t>(ranks) + 1, d->periodic_ ? 0.0 : -inf);
+  d->cuts_.back() = d->periodic_ ? 1.0 : inf;
   for (int q = 1; q < ranks; ++q)
     d->cuts_[static_cast<std::size_t>(q)] =
         n > 0 ? xs[static_cast<std::size_t>(q) * n / static_cast<std::size_t>(ranks)] : 0.0;
@@ -101,13 +103,13 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   std::vector<std::uint64_t> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
     keys[i] = resumed ? resumed->keys[i] : d->cell_key(P.pos[i], P.id[i]);
-    if (d->owner(d->home_x(world, i)) == me) mine.push_back(static_cast<std::uint32_t>(i));
+    if (d->owner(d->home(world, i)) == me) mine.push_back(static_cast<std::uint32_t>(i));
   }
   std::sort(mine.begin(), mine.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
   // The clumps whose centre is in the slab, with all their members.
   std::vector<ClumpRecord<D>> clumps;
   for (std::size_t c = 0; c < world.clumps.size(); ++c)
-    if (d->owner(world.clumps.pos[c].x()) == me)
+    if (d->owner(d->across(world.clumps.pos[c])) == me)
       clumps.push_back(ClumpRecord<D>::of(world.clumps, c));
   if (d->clumped_)
     for (std::size_t i = 0; i < n; ++i) P.clump[i] = d->clump_id(world, i);
@@ -130,9 +132,27 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
 }
 
 template <int D>
-double SlabDomain<D>::home_x(const World<D>& world, std::size_t i) const {
+double SlabDomain<D>::home(const World<D>& world, std::size_t i) const {
   const auto& P = world.particles;
-  return clumped_ && P.clump[i] != kNoClump ? world.clumps.pos[P.clump[i]].x() : P.pos[i].x();
+  return across(clumped_ && P.clump[i] != kNoClump ? world.clumps.pos[P.clump[i]] : P.pos[i]);
+}
+
+template <int D>
+void SlabDomain<D>::take_cell(const World<D>& world) {
+  s_row_ = world.cell.h.inverse().row(0).transpose();
+  width_ = 1.0 / s_row_.norm();
+}
+
+template <int D>
+int SlabDomain<D>::lower_rank() const {
+  const int me = comm_->rank(), ranks = comm_->size();
+  return me > 0 ? me - 1 : periodic_ && ranks > 1 ? ranks - 1 : -1;
+}
+
+template <int D>
+int SlabDomain<D>::upper_rank() const {
+  const int me = comm_->rank(), ranks = comm_->size();
+  return me + 1 < ranks ? me + 1 : periodic_ && ranks > 1 ? 0 : -1;
 }
 
 template <int D>
@@ -272,63 +292,6 @@ void SlabDomain<D>::sum(std::vector<ExactSum>& sums) {
   comm_->sum(sums);
 }
 
-// New cuts: each rank's step time since the last move, less its time in messages, spread over
-// its grains, binned along x and gathered; every rank then cuts the same histogram at equal
-// shares. A cut moves at most to a ghost width from its neighbours' old cuts, so that a grain
-// changes ranks by one at most, and inner slabs stay a ghost width across.
-template <int D>
-void SlabDomain<D>::rebalance(const World<D>& world) {
-  const auto& P = world.particles;
-  const int ranks = comm_->size();
-  double work = -comm_seconds_;
-  for (double s : world.stage_seconds) work += s;
-  const double spent = std::max(work - work_at_rebalance_, 0.0);
-  work_at_rebalance_ = work;
-  constexpr std::size_t kBins = 1024;
-  const double x0 = grid_lo_.x(), span = static_cast<double>(grid_dims_[0]) * ghost_width_;
-  std::vector<double> bins(kBins, 0.0);
-  const std::size_t mine = owned(world);
-  const double per_grain = mine > 0 ? spent / static_cast<double>(mine) : 0.0;
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    if (P.flags[i] & kGhost) continue;
-    const double b = std::floor((P.pos[i].x() - x0) / span * static_cast<double>(kBins));
-    bins[static_cast<std::size_t>(std::clamp(b, 0.0, static_cast<double>(kBins - 1)))] += per_grain;
-  }
-  Bytes out(kBins * sizeof(double));
-  std::memcpy(out.data(), bins.data(), out.size());
-  const Bytes all = comm_->all_gather(out);
-  std::vector<double> total(kBins, 0.0);
-  double slowest = 0.0;
-  for (int r = 0; r < ranks; ++r) {  // in rank order: the same sums on every rank
-    double rank_work = 0.0;
-    for (std::size_t b = 0; b < kBins; ++b) {
-      double v;
-      std::memcpy(&v, all.data() + (static_cast<std::size_t>(r) * kBins + b) * sizeof v, sizeof v);
-      total[b] += v;
-      rank_work += v;
-    }
-    slowest = std::max(slowest, rank_work);
-  }
-  double sum = 0.0;
-  for (double v : total) sum += v;
-  // Near an even share the cuts stay: moving them for timing noise costs migrations.
-  if (!(sum > 0.0) || slowest <= (1.0 + rebalance_tolerance) * sum / ranks) return;
-  const std::vector<double> old = cuts_;
-  double cumulative = 0.0;
-  std::size_t b = 0;
-  for (int q = 1; q < ranks; ++q) {
-    const double target = sum * q / ranks;
-    while (b < kBins && cumulative + total[b] < target) cumulative += total[b++];
-    const double inside = b < kBins && total[b] > 0.0 ? (target - cumulative) / total[b] : 0.0;
-    double cut = x0 + span * (static_cast<double>(b) + inside) / static_cast<double>(kBins);
-    const auto uq = static_cast<std::size_t>(q);
-    double lo = old[uq - 1] + min_slab(), hi = old[uq + 1] - min_slab();
-    if (q > 1) lo = std::max(lo, cuts_[uq - 1] + min_slab());
-    cut = std::min(std::max(cut, lo), hi);
-    cuts_[uq] = lo <= hi ? cut : old[uq];
-  }
-}
-
 template <int D>
 void SlabDomain<D>::collect_history(const World<D>& world, const std::vector<std::uint8_t>* only) {
   const auto& P = world.particles;
@@ -394,14 +357,14 @@ void SlabDomain<D>::grains_added(World<D>& world, std::size_t first_grain,
   for (std::size_t i = first_grain; i < P.size(); ++i) {
     rmax = std::max(rmax, P.radius[i]);
     if (clumped_ && P.clump[i] != kNoClump) offset = std::max(offset, P.body_offset[i].norm());
-    if (owner(home_x(world, i)) == me) keep.push_back(static_cast<std::uint32_t>(i));
+    if (owner(home(world, i)) == me) keep.push_back(static_cast<std::uint32_t>(i));
   }
   // Clumps: the rank's own, its new ones, then the ghost clumps (still last).
   const std::size_t owned_before = first_clump - C.ghosts;
   std::vector<std::uint32_t> order, index(C.size(), kNoClump);
   for (std::size_t c = 0; c < owned_before; ++c) order.push_back(static_cast<std::uint32_t>(c));
   for (std::size_t c = first_clump; c < C.size(); ++c)
-    if (owner(C.pos[c].x()) == me) order.push_back(static_cast<std::uint32_t>(c));
+    if (owner(across(C.pos[c])) == me) order.push_back(static_cast<std::uint32_t>(c));
   for (std::size_t c = owned_before; c < first_clump; ++c)
     order.push_back(static_cast<std::uint32_t>(c));
   for (std::size_t k = 0; k < order.size(); ++k) index[order[k]] = static_cast<std::uint32_t>(k);
@@ -427,10 +390,15 @@ void SlabDomain<D>::grains_added(World<D>& world, std::size_t first_grain,
 
 template <int D>
 void SlabDomain<D>::refuse_thin_slabs(const std::string& cause) const {
-  for (std::size_t q = 1; q + 2 < cuts_.size(); ++q)
-    if (cuts_[q + 1] - cuts_[q] < min_slab())
+  // (in a periodic cell every slab has two neighbours, the first and last across the faces;
+  // its width is taken in metres across the cell as it is now)
+  const std::size_t first = periodic_ && comm_->size() > 1 ? 0 : 1;
+  const std::size_t last = periodic_ && comm_->size() > 1 ? cuts_.size() - 1 : cuts_.size() - 2;
+  const double metres = periodic_ ? width_ : 1.0;
+  for (std::size_t q = first; q < last; ++q)
+    if ((cuts_[q + 1] - cuts_[q]) * metres < min_slab())
       throw InputError("", 0, "",
-                       cause + ": a slab of " + std::to_string(cuts_[q + 1] - cuts_[q]) +
+                       cause + ": a slab of " + std::to_string((cuts_[q + 1] - cuts_[q]) * metres) +
                            " m is too thin, less than " + std::to_string(min_slab()) +
                            " m (the ghost width, 2 x largest radius + skin, and twice a "
                            "clump's reach); use fewer ranks (docs/parallel.md)");

@@ -1,5 +1,11 @@
 // Spatial decomposition of a world over ranks in slabs along x (docs/parallel.md).
 //
+// In a periodic cell the slabs are cut along the cell's first fractional coordinate
+// (s = row 0 of h^-1 times x, in [0, 1)) and close in a ring: the first and last ranks are
+// neighbours across the cell's faces. Each owner brings its grains back into the cell before
+// a build; a ghost keeps its owner's position and the neighbour search finds the image it is
+// seen through, as for any pair across the faces.
+//
 // Each rank owns the grains whose centre lies in its slab [cut[r], cut[r+1]) and holds ghost
 // copies of the grains of the neighbouring slabs within the ghost width (2 r_max + skin) of
 // its boundaries: every contact of an owned grain is then in the rank's list. A contact
@@ -37,8 +43,8 @@ class SlabDomain final : public DomainHooks<D> {
   // put equal grain counts in the slabs; each rank keeps its own grains and the contact
   // history they had, and the world gets this domain as its hooks. A clump belongs to the rank
   // of its centre, with all its members; every rank holds the whole spar chains (their loads
-  // are summed over ranks). Throws InputError for what is not distributed yet (a periodic
-  // cell) and when a slab would be thinner than the ghost width.
+  // are summed over ranks). Throws InputError when a slab would be thinner than the ghost
+  // width.
   //
   // With `resumed`: the world was loaded from a checkpoint of a decomposed run (checkpoint()
   // below), on any number of ranks. The grains keep their keys, and the list is rebuilt as the
@@ -108,8 +114,19 @@ class SlabDomain final : public DomainHooks<D> {
   // The ghost width grown to the grains' present reach (every rank at a build).
   void follow_grain_growth(const World<D>& world);
   std::int64_t local_index(std::uint32_t id) const;
-  // Where a grain belongs: its centre, or a member's clump's centre (x).
-  double home_x(const World<D>& world, std::size_t i) const;
+  // A point's coordinate across the slabs: x, or in a periodic cell its first fractional
+  // coordinate (from the cell at the last build).
+  double across(const typename Dim<D>::Vec& x) const { return periodic_ ? s_row_.dot(x) : x.x(); }
+  // Where a grain belongs: across() of its centre, or of a member's clump's centre.
+  double home(const World<D>& world, std::size_t i) const;
+  // The cell's shape at a build (a periodic cell deforms): s_row_ and width_.
+  void take_cell(const World<D>& world);
+  // A length in the units of across(): metres, or fractions of the cell's width across x.
+  double in_cuts(double metres) const { return periodic_ ? metres / width_ : metres; }
+  // The neighbours a grain may move to or be a ghost on (-1: none): with a ring, rank 0's
+  // lower is the last rank.
+  int lower_rank() const;
+  int upper_rank() const;
   std::uint32_t clump_id(const World<D>& world, std::size_t i) const;
   // The clumps anew (slab_clumps.cpp): `owned` then the ghost clumps that arrived, each by id;
   // the grains' clump ids become indices.
@@ -122,7 +139,11 @@ class SlabDomain final : public DomainHooks<D> {
   void renumber_rows(World<D>& world, const std::vector<std::int32_t>& old_to_new);
 
   std::shared_ptr<DomainComm> comm_;
-  std::vector<double> cuts_;  // size + 1 values, -inf and +inf at the ends
+  std::vector<double> cuts_;  // size + 1 values, -inf and +inf at the ends (periodic: 0 and 1)
+  // A periodic cell: row 0 of h^-1 and the cell's width across x at the last build.
+  bool periodic_ = false;
+  typename Dim<D>::Vec s_row_ = Dim<D>::Vec::UnitX();
+  double width_ = 1.0;
   // The grid of the keys (the whole domain's bounding box at distribution, cells a ghost width
   // across) and how often keys are retaken (list builds; 0: never, keys are ids).
   typename Dim<D>::Vec grid_lo_ = Dim<D>::Vec::Zero();

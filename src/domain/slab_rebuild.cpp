@@ -17,6 +17,7 @@
 
 #include "base/error.hpp"
 #include "broadphase/list_history.hpp"
+#include "broadphase/periodic_search.hpp"
 #include "domain/slab_domain.hpp"
 
 namespace geodem {
@@ -66,6 +67,13 @@ void SlabDomain<D>::before_build(World<D>& world) {
     rebalance(world);
     builds_since_rebalance_ = 1;
   }
+  // A periodic cell: the grains back into it, and the slabs' widths as the cell is now (it
+  // deforms: one that shrank below the ghost width is refused like grains that grew).
+  if (periodic_) {
+    wrap_into_cell(world);
+    take_cell(world);
+    refuse_thin_slabs("the periodic cell narrowed to " + std::to_string(width_) + " m across x");
+  }
   follow_grain_growth(world);
   // Every sort_interval builds (counted alike on every rank) each owner retakes its grains'
   // keys from their cells now: neighbours then sit close in memory, as on one process. The
@@ -92,13 +100,14 @@ void SlabDomain<D>::before_build(World<D>& world) {
   auto &down = out_down_, &up = out_up_;
   down.clear(), up.clear();
   std::vector<std::uint8_t> leaving(n_old, 0);
+  const int lower = lower_rank(), upper = upper_rank();
   for (std::size_t i = 0; i < n_old; ++i) {
     if (P.flags[i] & kGhost) continue;
-    const int to = owner(home_x(world, i));
+    const int to = owner(home(world, i));
     if (to == me) {
       order_.push_back({key_[i], i});
-    } else if (to == me - 1 || to == me + 1) {
-      (to < me ? down : up).push_back(GrainRecord<D>::of(P, i, key_[i], clump_id(world, i)));
+    } else if (to == lower || to == upper) {
+      (to == lower ? down : up).push_back(GrainRecord<D>::of(P, i, key_[i], clump_id(world, i)));
       leaving[i] = 1;
     } else {
       throw InstabilityError("grain " + std::to_string(P.id[i]) +
@@ -112,10 +121,10 @@ void SlabDomain<D>::before_build(World<D>& world) {
   clumps_out_down_.clear(), clumps_out_up_.clear();
   std::vector<ClumpRecord<D>> staying;
   for (std::size_t c = 0; c < C.owned(); ++c) {
-    const int to = owner(C.pos[c].x());
-    (to == me  ? staying
-     : to < me ? clumps_out_down_
-               : clumps_out_up_)
+    const int to = owner(across(C.pos[c]));
+    (to == me      ? staying
+     : to == lower ? clumps_out_down_
+                   : clumps_out_up_)
         .push_back(ClumpRecord<D>::of(C, c));
   }
   // Grains that leave go with every history record they are part of.
@@ -180,15 +189,21 @@ void SlabDomain<D>::before_build(World<D>& world) {
     out.push_back(*it);
   };
   send_lower_.clear(), send_upper_.clear();  // sources for now, local indices below
+  const double reach = in_cuts(ghost_width_);
+  // Two ranks in a ring are each other's lower and upper: a grain near both of its slab's
+  // ends goes once (the receiver's search finds the image it pairs through).
+  const bool one_neighbour = lower >= 0 && lower == upper;
   for (const Source& src : order_) {
     const double x =
-        src.second < n_old ? P.pos[src.second].x() : arrived_[src.second - n_old].pos.x();
-    if (me > 0 && x < cuts_[static_cast<std::size_t>(me)] + ghost_width_) {
+        across(src.second < n_old ? P.pos[src.second] : arrived_[src.second - n_old].pos);
+    bool sent = false;
+    if (lower >= 0 && x < cuts_[static_cast<std::size_t>(me)] + reach) {
       down.push_back(record(src));
       send_clump(down.back().clump, clumps_out_down_);
       send_lower_.push_back(static_cast<std::uint32_t>(src.second));
+      sent = one_neighbour;
     }
-    if (me + 1 < ranks && x >= cuts_[static_cast<std::size_t>(me) + 1] - ghost_width_) {
+    if (upper >= 0 && !sent && x >= cuts_[static_cast<std::size_t>(me) + 1] - reach) {
       up.push_back(record(src));
       send_clump(up.back().clump, clumps_out_up_);
       send_upper_.push_back(static_cast<std::uint32_t>(src.second));

@@ -182,7 +182,7 @@ void VtkSeries<D>::write(const World<D>& world) {
     write_contacts_vtp(dir_ + "/vtk/" + name, world);
     pvd_.add(world.time, name, 3);
   }
-  if (world.cell.periodic) {
+  if (world.cell.periodic && root) {  // (a decomposed cell's stress is the same on every rank)
     std::snprintf(name, sizeof name, "cell_%06d.vtp", count_);
     write_cell_vtp(dir_ + "/vtk/" + name, world);
     pvd_.add(world.time, name, 4);

@@ -118,8 +118,8 @@ KindRun run_interface_shear_kind(const LoadedScenario& l, const std::string& fil
   return {0, line};
 }
 
-// The triaxial kind and its element tests with walls spread one run over the ranks of mpirun
-// (docs/parallel.md); a periodic cell is refused there (simple_shear always has one).
+// The triaxial kind and its element tests spread one run over the ranks of mpirun
+// (docs/parallel.md), in a box of walls or a periodic cell.
 ScenarioKind spread_lab_kind(const char* name, const char* (*reads_as)(const toml::table&)) {
   ScenarioKind k{name, reads_as, true, single_run, check_triaxial, run_triaxial_kind};
   k.decomposes = true;
@@ -142,7 +142,7 @@ ScenarioKind oedometer_kind() {
   return spread_lab_kind("oedometer", as_triaxial);
 }
 ScenarioKind simple_shear_kind() {
-  return {"simple_shear", as_triaxial, true, single_run, check_triaxial, run_triaxial_kind};
+  return spread_lab_kind("simple_shear", as_triaxial);
 }
 ScenarioKind direct_shear_kind() {
   return spread_lab_kind("direct_shear", as_triaxial);

@@ -43,17 +43,11 @@ struct LabDomain {
     if (prep) prepared = decompose_world(*prep, file, resumed ? &saved_prepared : nullptr, local);
     saved = saved_prepared = DomainCheckpoint<D>{};
   }
-  // The triaxial kind's: as decompose(); a periodic cell is refused on several ranks, and slabs
-  // the compaction will make too thin are refused at the start.
+  // The triaxial kind's: as decompose(); slabs the compaction will make too thin are refused at
+  // the start.
   void spread(World<D>& w, World<D>* prep, const TriaxialSettings& s, const RunOptions& opt,
               bool resumed) {
     if (!opt.decompose && !resumed) return;
-    if (s.periodic) {  // (mpirun -n 1: one process)
-      if (comm::size() == 1 && !resumed) return;
-      throw InputError(s.file, 0, "sample.boundary",
-                       "a periodic cell is not spread over MPI ranks yet (docs/parallel.md); run "
-                       "it without mpirun");
-    }
     decompose(w, prep, s.file, opt, resumed);
     if (!resumed) refuse_slabs_too_thin_for_growth(w, s);
   }
@@ -88,13 +82,17 @@ struct LabDomain {
     // from its centre: SlabDomain::thinnest_slab)
     const double width = (current->thinnest_slab() - current->skin()) * g + current->skin();
     const auto& cuts = current->cuts();
-    for (std::size_t q = 1; q + 2 < cuts.size(); ++q)
-      if (cuts[q + 1] - cuts[q] < width)
+    // (a periodic cell's cuts are fractions of its width, and every slab has two neighbours;
+    // the cell shrinks instead of the grains growing, to the same ratio)
+    const bool ring = s.periodic && cuts.size() > 2;
+    const double metres = s.periodic ? s.box[0] : 1.0;
+    for (std::size_t q = ring ? 0 : 1; q + (ring ? 1 : 2) < cuts.size(); ++q)
+      if ((cuts[q + 1] - cuts[q]) * metres < width)
         throw InputError(s.file, 0, "mpirun -n",
                          "the compaction will grow the grains up to about " + format_sig(g) +
                              " times: a slab must then be about " + format_sig(width) +
                              " m across (ghosts and clumps' reach), and one of " +
-                             format_sig(cuts[q + 1] - cuts[q]) +
+                             format_sig((cuts[q + 1] - cuts[q]) * metres) +
                              " m is too thin; use at most about " +
                              std::to_string(std::max(1, static_cast<int>(s.box[0] / width))) +
                              " ranks (docs/parallel.md)");

@@ -176,7 +176,8 @@ typename Dim<D>::Tensor cell_stress(const World<D>& world) {
   using Vec = typename Dim<D>::Vec;
   typename Dim<D>::Tensor s = world.cell_fabric;
   const auto& P = world.particles;
-  if (world.clumps.size() > 0)
+  // (a decomposed cell's sum took its members at their clumps' centres: ExactTally)
+  if (world.clumps.size() > 0 && !world.domain)
     for (std::size_t i = 0; i < P.size(); ++i) {
       if (P.clump[i] == kNoClump) continue;
       const Vec arm = P.pos[i] - world.clumps.pos[P.clump[i]];

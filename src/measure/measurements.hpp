@@ -88,7 +88,8 @@ typename Dim<D>::Tensor average_stress(const World<D>& world, double volume);
 
 // The average stress of a periodic cell, compression positive, from any step: the contacts'
 // sum of d (x) f (world.cell_fabric, clump members' centres replaced by their clump's, as
-// integrate_clumps does for the fabric stress) over the cell's volume, symmetric part.
+// integrate_clumps does for the fabric stress) over the cell's volume, symmetric part. In a
+// decomposed cell the sum is the whole domain's, taken exactly over the ranks.
 template <int D>
 typename Dim<D>::Tensor cell_stress(const World<D>& world);
 

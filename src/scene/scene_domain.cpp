@@ -11,15 +11,6 @@
 
 namespace geodem {
 
-namespace {
-[[noreturn]] void refuse(const SceneSettings& s, const std::string& key, const std::string& what) {
-  throw InputError(s.file, 0, key,
-                   what +
-                       " in a scene spread over MPI ranks yet (docs/parallel.md); run it "
-                       "without mpirun");
-}
-}  // namespace
-
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_world(World<D>& world, const std::string& file,
                                                const DomainCheckpoint<D>* resumed, bool local) {
@@ -35,7 +26,6 @@ std::shared_ptr<SlabDomain<D>> decompose_world(World<D>& world, const std::strin
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
                                                const DomainCheckpoint<D>* resumed, bool local) {
-  if (world.cell.periodic) refuse(s, "cell", "a periodic cell is not distributed");
   return decompose_world(world, s.file, resumed, local);
 }
 

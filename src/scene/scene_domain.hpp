@@ -14,8 +14,8 @@
 namespace geodem {
 
 // Decomposes the world over the ranks of MPI_COMM_WORLD (`resumed`: a world loaded from a
-// decomposed run's checkpoint, SlabDomain::distribute); throws InputError for a periodic cell
-// (not distributed yet) and for slabs thinner than the ghost width.
+// decomposed run's checkpoint, SlabDomain::distribute); throws InputError for slabs thinner
+// than the ghost width.
 // With `local`: a domain of one rank in this process, without MPI.
 // The same for any world (a lab test's sample); an InputError names `file` and "mpirun -n".
 template <int D>

@@ -1,5 +1,6 @@
 #include "study/study_comm.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -48,6 +49,16 @@ void finalize() {
   if (g_active) MPI_Finalize();
 #endif
   g_active = false;
+}
+
+int abort_all(int code) {
+#ifdef GEODEM_HAVE_MPI
+  if (g_active) {
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, code);
+  }
+#endif
+  return code;
 }
 
 bool active() {

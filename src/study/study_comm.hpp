@@ -13,6 +13,9 @@ namespace geodem::comm {
 // Starts MPI when launched by mpirun/mpiexec (their environment variables say so).
 void init(int* argc, char*** argv);
 void finalize();
+// Ends every rank of mpirun with `code` (an error met by one rank only: the others would wait
+// for it in their next message for ever). Returns `code` without MPI.
+int abort_all(int code);
 bool active();
 bool built_with_mpi();
 int rank();  // 0 without MPI

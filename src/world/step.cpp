@@ -65,6 +65,14 @@ bool list_expired(World<D>& world) {
     // strain that brings grains a reach apart closer (world/periodic_cell.hpp).
     const double closing = world.cell.strain_since_build() * world.cell.reach_at_build;
     auto expired = [&](double u) { return 2.0 * u + closing > skin; };
+    if (world.domain) {  // the bound over all ranks, as for walls below
+      const double inf = std::numeric_limits<double>::infinity();
+      const double moved =
+          -world.domain->min_over_ranks(-(world.rebuild_needed ? inf : world.last_move));
+      world.last_move = 0.0;
+      if (moved == inf) return true;
+      world.disp_bound += moved;
+    }
     if (!expired(world.disp_bound + world.radius_growth)) return false;
     const typename Dim<D>::Tensor F = world.cell.h * world.cell.h_at_build.inverse();
     // (a maximum: the same in any order)
@@ -74,6 +82,7 @@ bool list_expired(World<D>& world) {
           return (P.pos[k] - F * P.pos_at_build[k]).squaredNorm();
         });
     world.disp_bound = std::sqrt(d2);
+    if (world.domain) world.disp_bound = -world.domain->min_over_ranks(-world.disp_bound);
     return expired(world.disp_bound + world.radius_growth);
   }
   double wall_disp = spar_max_displacement(world);
