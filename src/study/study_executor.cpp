@@ -72,8 +72,8 @@ nlohmann::json run_or_resume(const Settings& settings, RunOptions ro, Run run) {
 struct CheckedRun {
   nlohmann::json resolved;
   std::function<nlohmann::json(const RunOptions&)> run;
-  // May run over a group of ranks: a triaxial-kind run with walls, a pull-out or an interface
-  // shear test without a deposit cache.
+  // May run over a group of ranks: a triaxial-kind run, a pull-out or an interface shear test
+  // without a deposit cache.
   bool spreads = false;
 };
 
@@ -91,7 +91,7 @@ CheckedRun check_run(const toml::table& scenario, const std::string& file) {
   }
   auto s = std::make_shared<TriaxialSettings>(read_triaxial(scenario, file));
   return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_triaxial); },
-          !s->periodic};
+          true};
 }
 
 std::string format_duration(double s) {
@@ -206,9 +206,8 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
   for (const auto& c : settings)
     if (grouped && !c.spreads)
       throw InputError(opt_.file, 0, "--ranks-per-run",
-                       "the runs of this study (a periodic cell, or a pull-out or interface "
-                       "shear with a deposit cache) are not spread over ranks yet: give "
-                       "--ranks-per-run 1");
+                       "the runs of this study (a pull-out or interface shear with a deposit "
+                       "cache) are not spread over ranks yet: give --ranks-per-run 1");
   const bool writes = comm::group_rank() == 0;
   const std::vector<std::size_t> mine = my_share(runs);
   double share_cost = 0.0;

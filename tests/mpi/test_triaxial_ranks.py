@@ -8,9 +8,9 @@ same history.csv, preparation.csv and results. Killed (SIGKILL after periodic ch
 on another number of ranks, or by one process without mpirun, they write the files of the
 uninterrupted run. The element tests with walls (oedometer, isotropic, cyclic, direct shear)
 give the same bits on 1 and 2 ranks. A series study whose runs go to groups of 2 ranks
-(`--ranks-per-run 2`) gives the same results on 1 and 2 groups. What is not spread yet is refused with exit code 2: the
-simple shear (always periodic), a periodic cell on several ranks, and slabs thinner than the
-ghost width the compaction will grow to (refused before the run starts).
+(`--ranks-per-run 2`) gives the same results on 1 and 2 groups. Slabs thinner than the ghost
+width the compaction will grow to are refused with exit code 2 before the run starts (the tests
+in a periodic cell: test_cell_ranks.py).
 
     test_triaxial_ranks.py PATH/TO/geodem
 Exit 77 (skipped) without mpirun or without MPI in geodem.
@@ -174,25 +174,15 @@ def main() -> int:
                         f"on {then or 'one process without mpirun'}: history, preparation and "
                         f"results of the uninterrupted run {'' if r.returncode == 0 else r.stderr}")
 
-        # What is not spread yet: exit 2 with a message naming the file and the key.
+        # Slabs too thin: exit 2 with a message naming the file and the key.
         narrow = os.path.join(tmp, "narrow.toml")
         with open(os.path.join(HERE, "triaxial2d.toml")) as f:
             text = f.read().replace("box = [0.8, 0.8]", "box = [0.4, 0.8]") \
                 .replace("count = 300", "count = 150")
         with open(narrow, "w") as f:
             f.write(text)
-        periodic = os.path.join(tmp, "periodic.toml")
-        with open(periodic, "w") as f:
-            f.write(text.replace("count = 150", 'count = 150\nboundary = "periodic"'))
-        simple = os.path.join(tmp, "simple_shear.toml")  # (always in a periodic cell)
-        with open(simple, "w") as f:
-            f.write(text.replace('kind = "triaxial"', 'kind = "simple_shear"')
-                    .replace("count = 150", 'count = 150\nboundary = "periodic"')
-                    .split("[shear]")[0] + "[loading]\nnormal_stress = [1e5]\n"
-                    "max_shear_strain = 0.01\n[output]\nplots = false\n")
-        for scenario, ranks, words in ((narrow, 4, ["narrow.toml", "mpirun -n", "will grow", "too thin"]),
-                                       (periodic, 2, ["periodic.toml", "sample.boundary"]),
-                                       (simple, 2, ["simple_shear.toml", "without mpirun"])):
+        for scenario, ranks, words in ((narrow, 4, ["narrow.toml", "mpirun -n", "will grow",
+                                                    "too thin"]),):
             r = run(ranks, scenario, os.path.join(tmp, os.path.basename(scenario) + ".out"))
             check(r.returncode == 2 and all(w in r.stderr for w in words) and
                   r.stderr.count("error:") == 1,
