@@ -6,38 +6,8 @@
 
 namespace geodem {
 
-namespace {
-constexpr std::int64_t kMask = 0xffffffff;
-constexpr int kPosInf = ExactSum::kDigits, kNegInf = ExactSum::kDigits + 1,
-              kNaN = ExactSum::kDigits + 2;
-// A digit moves by less than 2^32 per term: 2^30 terms stay far from int64's limit.
-constexpr std::uint32_t kNormaliseEvery = 1u << 30;
-}  // namespace
-
-void ExactSum::add(double x) {
-  if (!std::isfinite(x)) {
-    ++limb_[std::isnan(x) ? kNaN : x > 0.0 ? kPosInf : kNegInf];
-    return;
-  }
-  if (x == 0.0) return;
-  // x = m 2^p units of 2^-1074: m the 53-bit significand (52 bits when subnormal).
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  const auto biased = static_cast<int>((bits >> 52) & 0x7ff);
-  const std::uint64_t frac = bits & ((std::uint64_t{1} << 52) - 1);
-  const std::uint64_t m = biased == 0 ? frac : frac | (std::uint64_t{1} << 52);
-  const int p = biased == 0 ? 0 : biased - 1;
-  const int k = p / 32, s = p % 32;
-  // m << s spans three digits (at most 84 bits).
-  const auto d0 = static_cast<std::int64_t>((m << s) & kMask);
-  const auto d1 = static_cast<std::int64_t>((s == 0 ? m >> 32 : m >> (32 - s)) & kMask);
-  const auto d2 = static_cast<std::int64_t>(s == 0 ? 0 : m >> (64 - s));
-  const auto uk = static_cast<std::size_t>(k);
-  if (bits >> 63) {
-    limb_[uk] -= d0, limb_[uk + 1] -= d1, limb_[uk + 2] -= d2;
-  } else {
-    limb_[uk] += d0, limb_[uk + 1] += d1, limb_[uk + 2] += d2;
-  }
-  if (++pending_ >= kNormaliseEvery) normalise();
+void ExactSum::add_non_finite(double x) {
+  ++limb_[std::isnan(x) ? kNaN : x > 0.0 ? kPosInf : kNegInf];
 }
 
 void ExactSum::add(const ExactSum& other) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 
 namespace geodem {
@@ -19,7 +20,33 @@ class ExactSum {
   // double's top bit is bit 2097: 66 digits, and two more take the carries of up to 2^63 terms.
   static constexpr int kDigits = 68;
 
-  void add(double x);
+  // Inline: a decomposed periodic cell adds a dozen terms per contact every step.
+  void add(double x) {
+    const auto bits = std::bit_cast<std::uint64_t>(x);
+    const auto biased = static_cast<int>((bits >> 52) & 0x7ff);
+    if (biased == 0x7ff) [[unlikely]] {
+      add_non_finite(x);
+      return;
+    }
+    if ((bits << 1) == 0) return;  // +-0
+    // x = m 2^p units of 2^-1074: m the 53-bit significand (52 bits when subnormal).
+    const std::uint64_t frac = bits & ((std::uint64_t{1} << 52) - 1);
+    const std::uint64_t m = biased == 0 ? frac : frac | (std::uint64_t{1} << 52);
+    const int p = biased == 0 ? 0 : biased - 1;
+    const int k = p / 32, s = p % 32;
+    // m << s spans three digits (at most 84 bits).
+    const auto d0 = static_cast<std::int64_t>((m << s) & kMask);
+    const auto d1 = static_cast<std::int64_t>((s == 0 ? m >> 32 : m >> (32 - s)) & kMask);
+    const auto d2 = static_cast<std::int64_t>(s == 0 ? 0 : m >> (64 - s));
+    const auto uk = static_cast<std::size_t>(k);
+    if (bits >> 63) {
+      limb_[uk] -= d0, limb_[uk + 1] -= d1, limb_[uk + 2] -= d2;
+    } else {
+      limb_[uk] += d0, limb_[uk + 1] += d1, limb_[uk + 2] += d2;
+    }
+    if (++pending_ >= kNormaliseEvery) [[unlikely]]
+      normalise();
+  }
   void add(const ExactSum& other);
   // The exact sum rounded to the nearest double (ties to even); +-inf past the largest
   // double or when an infinity was added; NaN after a NaN or both infinities.
@@ -40,6 +67,11 @@ class ExactSum {
   }
 
  private:
+  static constexpr std::int64_t kMask = 0xffffffff;
+  static constexpr int kPosInf = kDigits, kNegInf = kDigits + 1, kNaN = kDigits + 2;
+  // A digit moves by less than 2^32 per term: 2^30 terms stay far from int64's limit.
+  static constexpr std::uint32_t kNormaliseEvery = 1u << 30;
+  void add_non_finite(double x);
   // Digits, then the counts of +inf, -inf and NaN terms (they take no digits).
   std::array<std::int64_t, kDigits + 3> limb_{};
   std::uint32_t pending_ = 0;  // terms added since the last normalise()

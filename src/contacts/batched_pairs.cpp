@@ -177,7 +177,7 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
         const Vec kc = normal_stiffness(*law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
         t.cell_stiffness += kc;
         if (t.exact.on && !(P.flags[i] & kGhost)) {  // a decomposed cell (slab_tally.hpp)
-          t.exact.add_cell_stiffness(kc);
+          t.exact.add_cell_stiffness(i, kc);
           if (!image[k].home()) t.exact.add_cell_fabric(cell.shift(image[k]), f);
         }
       }

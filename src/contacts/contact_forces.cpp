@@ -177,7 +177,7 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
           const Vec kc = normal_stiffness(law, ri, rj, fn, delta) * d.cwiseProduct(nrm).cwiseAbs2();
           t.cell_stiffness += kc;
           if (t.exact.on && !(P.flags[i] & kGhost)) {
-            t.exact.add_cell_stiffness(kc);
+            t.exact.add_cell_stiffness(i, kc);
             if (imaged) t.exact.add_cell_fabric(cell.shift(image[k]), f);
           }
         }
@@ -252,9 +252,12 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
     P.force[c.body] += c.a;
     P.torque[c.body] += c.b;
   });
-  if constexpr (Periodic && kFabricByGrain<D>) cell_fabric_of_grains(world, tallies);
+  // (a decomposed cell's plain sum would be replaced by its exact one: not taken)
   if constexpr (Periodic) {
-    if (world.domain) exact_cell_fabric_of_grains(world, tallies);
+    if (world.domain)
+      exact_cell_fabric_of_grains(world, tallies);
+    else if constexpr (kFabricByGrain<D>)
+      cell_fabric_of_grains(world, tallies);
   }
 }
 
@@ -362,6 +365,7 @@ void reduce_over_ranks(World<D>& world, std::vector<SlabTally<D>>& tallies, std:
     const auto& t = tallies[s].exact;
     for (std::size_t k = 0; k < t.wall.size(); ++k) sums[k].add(t.wall[k]);
     for (std::size_t k = 0; k < t.stats.size(); ++k) sums[nw * Tally::kPerWall + k].add(t.stats[k]);
+    tallies[s].exact.finish_rows();
     for (std::size_t k = 0; k < t.cell.size(); ++k) sums[at_cell + k].add(t.cell[k]);
   }
   for (std::size_t s = 0; s < slabs; ++s)
@@ -374,13 +378,7 @@ void reduce_over_ranks(World<D>& world, std::vector<SlabTally<D>>& tallies, std:
     world.walls[w].stiffness = sums[w * Tally::kPerWall + D].value();
     world.walls[w].dashpot = sums[w * Tally::kPerWall + D + 1].value();
   }
-  if (periodic) {
-    for (int a = 0; a < D; ++a) {
-      for (int b = 0; b < D; ++b)
-        world.cell_fabric(a, b) = sums[at_cell + static_cast<std::size_t>(a * D + b)].value();
-      world.cell_stiffness[a] = sums[at_cell + static_cast<std::size_t>(D * D + a)].value();
-    }
-  }
+  if (periodic) Tally::read_cell(sums.data() + at_cell, world.cell_fabric, world.cell_stiffness);
   if (!measure) return;
   const ExactSum* st = sums.data() + nw * Tally::kPerWall;
   for (int a = 0; a < D; ++a)

@@ -15,29 +15,55 @@ namespace geodem {
 // stiffness and dashpot; on measuring steps the contact statistics, each contact counted on
 // the rank that owns the first grain of its row. A periodic cell's sum of d f^T and its
 // stiffness every step: d f^T as the owned grains' x F^T (a clump member's x its clump's
-// centre) plus each imaged contact's shift f^T, counted like the statistics.
+// centre) plus each imaged contact's shift f^T, counted like the statistics. Only the
+// symmetric part is summed (the cell's stress is that part), D (D + 1) / 2 sums; the
+// stiffness is summed in floating point along each row (the same on every rank: a row's
+// contacts and their order do not depend on the decomposition), and the row's sum exactly.
 template <int D>
 struct ExactTally {
   using Vec = typename Dim<D>::Vec;
-  static constexpr std::size_t kPerWall = D + 2, kStats = D * D + 4, kCell = D * D + D;
+  static constexpr std::size_t kPerWall = D + 2, kStats = D * D + 4, kSym = D * (D + 1) / 2;
+  static constexpr std::size_t kCell = kSym + D;
   bool on = false;
   std::vector<ExactSum> wall, stats;  // stats: fabric (row-major), |f|, energy, counts
-  std::vector<ExactSum> cell;         // periodic cell: d f^T (row-major), then stiffness
+  std::vector<ExactSum> cell;         // periodic cell: sym(d f^T) (a <= b), then stiffness
 
   void reset(bool domain, std::size_t walls, bool measure, bool periodic) {
     on = domain;
     wall.assign(on ? walls * kPerWall : 0, ExactSum{});
     stats.assign(on && measure ? kStats : 0, ExactSum{});
     cell.assign(on && periodic ? kCell : 0, ExactSum{});
+    row_ = kNoRow, row_stiffness_ = Vec::Zero();
   }
-  // x f^T into the cell's d f^T.
+  // sym(x f^T) into the cell's sum.
   void add_cell_fabric(const Vec& x, const Vec& f) {
+    std::size_t k = 0;
+    for (int a = 0; a < D; ++a) {
+      cell[k++].add(x[a] * f[a]);
+      for (int b = a + 1; b < D; ++b) cell[k++].add(0.5 * (x[a] * f[b] + x[b] * f[a]));
+    }
+  }
+  // Row `row`'s contact stiffness k (rows in turn; finish_rows() after the last).
+  void add_cell_stiffness(std::size_t row, const Vec& k) {
+    if (row != row_) {
+      finish_rows();
+      row_ = row;
+    }
+    row_stiffness_ += k;
+  }
+  void finish_rows() {
+    if (row_ != kNoRow)
+      for (int a = 0; a < D; ++a) cell[kSym + static_cast<std::size_t>(a)].add(row_stiffness_[a]);
+    row_ = kNoRow, row_stiffness_ = Vec::Zero();
+  }
+  // The cell's sums as the world holds them: d f^T (symmetric) and the stiffness.
+  static void read_cell(const ExactSum* sums, typename Dim<D>::Tensor& fabric, Vec& stiffness) {
+    std::size_t k = 0;
     for (int a = 0; a < D; ++a)
-      for (int b = 0; b < D; ++b) cell[static_cast<std::size_t>(a * D + b)].add(x[a] * f[b]);
+      for (int b = a; b < D; ++b) fabric(a, b) = fabric(b, a) = sums[k++].value();
+    for (int a = 0; a < D; ++a) stiffness[a] = sums[kSym + static_cast<std::size_t>(a)].value();
   }
-  void add_cell_stiffness(const Vec& k) {
-    for (int a = 0; a < D; ++a) cell[static_cast<std::size_t>(D * D + a)].add(k[a]);
-  }
+
   void add_wall(std::size_t w, const Vec& f, double stiffness, double dashpot) {
     for (int a = 0; a < D; ++a) wall[w * kPerWall + static_cast<std::size_t>(a)].add(f[a]);
     wall[w * kPerWall + D].add(stiffness);
@@ -51,6 +77,11 @@ struct ExactTally {
     stats[D * D + 1].add(energy);
     stats[D * D + (with_wall ? 3 : 2)].add(1.0);
   }
+
+ private:
+  static constexpr std::size_t kNoRow = ~std::size_t{0};
+  std::size_t row_ = kNoRow;  // the row whose stiffness is being summed
+  Vec row_stiffness_ = Vec::Zero();
 };
 
 // What one slab adds to the world's sums.
