@@ -50,6 +50,38 @@ void PulloutRun::pull_phase() {
   phase = Phase::kDone;
 }
 
+namespace {
+// A grain's value for a measure, and its id (the measures sum in id order).
+struct ById {
+  std::uint32_t id;
+  double value;
+};
+}  // namespace
+
+void PulloutRun::gather_row_measures(std::vector<double>& zone, std::vector<double>& near) {
+  const auto& P = w.particles;
+  const Pull& u = pull;
+  std::vector<ById> mine_zone, mine_near;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    if (P.flags[i] & kGhost) continue;
+    const std::uint32_t id = P.id[i];
+    if (u.zone[id]) mine_zone.push_back({id, u.start[id].x() - P.pos[i].x()});
+    if (u.near[id]) mine_near.push_back({id, (P.pos[i] - u.start[id]).norm()});
+  }
+  Bytes out;
+  put_records(out, mine_zone);
+  put_records(out, mine_near);
+  const Bytes all = domain.current->comm().all_gather(out);
+  std::vector<ById> all_zone, all_near;
+  std::size_t at = 0;
+  while (at < all.size()) append_records(all, at, all_zone), append_records(all, at, all_near);
+  for (auto [from, to] : {std::pair{&all_zone, &zone}, std::pair{&all_near, &near}}) {
+    std::sort(from->begin(), from->end(), [](const ById& a, const ById& b) { return a.id < b.id; });
+    to->clear();
+    for (const ById& g : *from) to->push_back(g.value);
+  }
+}
+
 bool PulloutRun::record_pull(double d_record) {
   auto& S = w.spars;
   Pull& u = pull;
@@ -59,10 +91,16 @@ bool PulloutRun::record_pull(double d_record) {
   if (w.measure_this_step || u.displacement >= s.max_displacement) {
     SheetPartLoads parts;
     const double T = u.end_row(parts);
-    const Particles<2>& grains = all_grains();
-    const double soil = anchoring_soil_displacement(u, grains, false, moved),
-                 median = anchoring_soil_displacement(u, grains, true, moved);
-    const double near = mean_grain_displacement(grains, u.near, u.start);
+    double soil = 0.0, median = 0.0, near = 0.0;
+    if (domain) {  // the same sums, in id order, as over every grain gathered
+      gather_row_measures(moved, near_moved);
+      soil = mean_of(moved), near = mean_of(near_moved);
+      median = median_of(moved);
+    } else {
+      soil = anchoring_soil_displacement(u, w.particles, false, moved);
+      median = anchoring_soil_displacement(u, w.particles, true, moved);
+      near = mean_grain_displacement(w.particles, u.near, u.start);
+    }
     const double nodes = mean_embedded_node_displacement(w, u.node_start);
     const std::vector<double> row = {static_cast<double>(w.step),
                                      w.time,

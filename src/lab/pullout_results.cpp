@@ -121,14 +121,19 @@ double anchoring_soil_displacement(const Pull& u, const Particles<2>& P, bool me
   scratch.clear();
   for (std::size_t i = 0; i < P.size(); ++i)
     if (u.zone[P.id[i]]) scratch.push_back(u.start[P.id[i]].x() - P.pos[i].x());
-  if (scratch.empty()) return 0.0;
-  if (median) {
-    std::nth_element(scratch.begin(), scratch.begin() + scratch.size() / 2, scratch.end());
-    return scratch[scratch.size() / 2];
-  }
+  return median ? median_of(scratch) : mean_of(scratch);
+}
+
+double mean_of(const std::vector<double>& v) {
   double sum = 0.0;
-  for (double d : scratch) sum += d;
-  return sum / static_cast<double>(scratch.size());
+  for (double d : v) sum += d;
+  return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+}
+
+double median_of(std::vector<double>& v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
 }
 
 void pull_results(const Pull& u, const World<2>& w, const Particles<2>& P, const PulloutSettings& s,

@@ -113,6 +113,10 @@ void start_pull(Pull& u, const World<2>& w, const Particles<2>& P, const Pullout
 // grains that roll off a free face far from the anchor do not pull up).
 double anchoring_soil_displacement(const Pull& u, const Particles<2>& P, bool median,
                                    std::vector<double>& scratch);
+// The mean of v's values summed in their order (0 when empty), and their median (the upper
+// one of an even count; v is reordered).
+double mean_of(const std::vector<double>& v);
+double median_of(std::vector<double>& v);
 
 // The estimates, the mechanism, the analytic terms and the soil's displacement of a
 // finished pull, with the chains of the final world `w` and its grains `P`, into `results`.

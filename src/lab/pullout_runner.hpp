@@ -61,8 +61,8 @@ struct PulloutRun {
   DepositCache deposit_cache;   // the foundation's deposit, shared with other runs
   bool deposit_loaded = false;  // this run's foundation came from the cache
   std::shared_ptr<SurfacePressure<2>> surcharge;
-  std::uint64_t layers_planned = 0;  // estimate of the stage's layers (progress only)
-  std::vector<double> moved;         // scratch of soil_displacement()
+  std::uint64_t layers_planned = 0;       // estimate of the stage's layers (progress only)
+  std::vector<double> moved, near_moved;  // scratch of the history row's measures
 
   // The run's own state, saved in checkpoints (visit_state).
   Phase phase = Phase::kFoundation;
@@ -120,6 +120,11 @@ struct PulloutRun {
     gathered = domain_grains(w);
     return gathered;
   }
+  // A decomposed run's measures of a history row: the anchoring zone's displacements toward
+  // the pull (`zone`) and the lengths of the displacements of the grains next to the sheet
+  // (`near`), each in id order, gathered from every rank's own grains (a few values a grain of
+  // those sets, not every grain's record). All ranks call it.
+  void gather_row_measures(std::vector<double>& zone, std::vector<double>& near);
   // The whole sample's grains for which pred(i) holds of the world's grain i (all ranks
   // call it: a decomposed run counts every rank's own).
   template <class Pred>
