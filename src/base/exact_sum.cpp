@@ -44,6 +44,27 @@ void ExactSum::normalise() {
   pending_ = 0;
 }
 
+void ExactSum::digit_span(int& lo, int& hi) const {
+  lo = 0, hi = kDigits;
+  while (lo < kDigits && limb_[static_cast<std::size_t>(lo)] == 0) ++lo;
+  while (hi > lo && limb_[static_cast<std::size_t>(hi - 1)] == 0) --hi;
+}
+
+void ExactSum::pack(const std::vector<ExactSum>& sums, int lo, int hi, std::int64_t* out) {
+  for (const ExactSum& x : sums) {
+    for (int d = lo; d < hi; ++d) *out++ = x.limb_[static_cast<std::size_t>(d)];
+    for (int c = kDigits; c < kDigits + 3; ++c) *out++ = x.limb_[static_cast<std::size_t>(c)];
+  }
+}
+
+void ExactSum::unpack(const std::int64_t* in, int lo, int hi, std::vector<ExactSum>& sums) {
+  for (ExactSum& x : sums) {
+    x.limb_.fill(0);
+    for (int d = lo; d < hi; ++d) x.limb_[static_cast<std::size_t>(d)] = *in++;
+    for (int c = kDigits; c < kDigits + 3; ++c) x.limb_[static_cast<std::size_t>(c)] = *in++;
+  }
+}
+
 double ExactSum::value() const {
   if (limb_[kNaN] > 0 || (limb_[kPosInf] > 0 && limb_[kNegInf] > 0))
     return std::numeric_limits<double>::quiet_NaN();

@@ -11,6 +11,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <vector>
 
 namespace geodem {
 
@@ -58,6 +59,13 @@ class ExactSum {
   const std::array<std::int64_t, kDigits + 3>& raw() const { return limb_; }
   // Carries each digit's overflow into the next: every digit but the top one in [0, 2^32).
   void normalise();
+  // The digits [lo, hi) outside which every digit is 0 (lo >= hi: none), and the sums' raw
+  // limbs packed over a window of digits [lo, hi) that holds every non-zero one, then the
+  // three counts: (hi - lo + 3) limbs a sum. Unpacking sets the other digits to 0. (A
+  // reduction over ranks then sends the few digits a step's sums span, not all 68.)
+  void digit_span(int& lo, int& hi) const;
+  static void pack(const std::vector<ExactSum>& sums, int lo, int hi, std::int64_t* out);
+  static void unpack(const std::int64_t* in, int lo, int hi, std::vector<ExactSum>& sums);
   // Before the raw limbs of `parts` accumulators (the ranks) are added: normalises only when
   // the terms added since the last normalise() could make a limb of that sum overflow (a limb
   // holds less than (terms + 1) 2^32: parts x (terms + 1) below 2^30 keeps the sum below 2^62).

@@ -102,6 +102,56 @@ TEST(ExactSum, RoundsToNearestWithTiesToEven) {
   EXPECT_EQ(exact({max, max}), std::numeric_limits<double>::infinity());
 }
 
+// A reduction over ranks packs each rank's sums over the window of digits any of them uses
+// (MpiDomainComm::sum) and adds the packed limbs: the same bits as merging the whole sums,
+// with negative, infinite and normalised sums; and over all the digits (the window a normalised
+// negative sum makes: its digits reach the top).
+TEST(ExactSum, PackedOverTheirWindowTheSumsMergeToTheSameBits) {
+  constexpr int kRanks = 3;
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::vector<ExactSum>> ranks(kRanks, std::vector<ExactSum>(4));
+  for (int r = 0; r < kRanks; ++r) {
+    auto& s = ranks[static_cast<std::size_t>(r)];
+    for (double x : random_terms(300, -30, 10, 20u + static_cast<unsigned>(r))) s[0].add(x);
+    for (double x : random_terms(50, 0, 3, 30u + static_cast<unsigned>(r))) s[1].add(-std::abs(x));
+    s[2].add(r == 1 ? inf : 1e-3);
+    for (double x : random_terms(40, -5, 5, 40u + static_cast<unsigned>(r))) s[3].add(std::abs(x));
+    if (r == 2) s[3].normalise();  // (a positive sum: its digits stay in its span)
+  }
+  // The whole sums merged: the reference.
+  std::vector<ExactSum> whole(4);
+  for (const auto& s : ranks)
+    for (std::size_t k = 0; k < 4; ++k) whole[k].add(s[k]);
+  for (bool wide : {false, true}) {
+    int lo = ExactSum::kDigits, hi = 0;
+    if (wide) {
+      lo = 0, hi = ExactSum::kDigits;
+    } else {
+      for (const auto& s : ranks)
+        for (const auto& x : s) {
+          int a = 0, b = 0;
+          x.digit_span(a, b);
+          if (a < b) lo = std::min(lo, a), hi = std::max(hi, b);
+        }
+      EXPECT_LT(lo, hi);
+      EXPECT_LT(hi - lo, 12);  // a few digits of 68
+    }
+    const std::size_t width = static_cast<std::size_t>(hi - lo + 3);
+    std::vector<std::int64_t> total(4 * width, 0), packed(total.size());
+    for (const auto& s : ranks) {
+      ExactSum::pack(s, lo, hi, packed.data());
+      for (std::size_t k = 0; k < total.size(); ++k) total[k] += packed[k];
+    }
+    std::vector<ExactSum> merged(4);
+    ExactSum::unpack(total.data(), lo, hi, merged);
+    for (std::size_t k = 0; k < 4; ++k) {
+      merged[k].normalise();
+      EXPECT_EQ(bits(merged[k].value()), bits(whole[k].value())) << "sum " << k;
+    }
+  }
+  EXPECT_EQ(whole[2].value(), inf);
+}
+
 TEST(ExactSum, InfinitiesAndNaN) {
   const double inf = std::numeric_limits<double>::infinity();
   EXPECT_EQ(exact({1.0, inf}), inf);
