@@ -11,7 +11,10 @@
 #include <string>
 #include <tuple>
 
-#ifdef __GLIBC__
+// (not under AddressSanitizer: its allocator is not glibc's, and glibc's trim of arenas that
+// allocator does not keep crashed when ranks as threads trimmed at once)
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+#define GEODEM_TRIM_HEAP 1
 #include <malloc.h>
 #endif
 
@@ -273,7 +276,7 @@ void SlabDomain<D>::before_build(World<D>& world) {
   std::vector<std::uint32_t>().swap(new_index_);
   for (auto* v : {&clumps_out_down_, &clumps_out_up_, &ghost_clumps_})
     std::vector<ClumpRecord<D>>().swap(*v);
-#ifdef __GLIBC__
+#ifdef GEODEM_TRIM_HEAP
   malloc_trim(0);  // and to the system: freed blocks of the heap are kept by glibc otherwise
 #endif
 }
