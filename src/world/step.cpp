@@ -55,6 +55,19 @@ class ScopedStage {
 // listed could now touch: 2 x (largest grain displacement) or grain + wall (or node)
 // displacement beyond the skin. A point of an element moves at most as far as its
 // farther node. The cheap velocity bound is refined by an exact pass first.
+// A decomposed world's bound on the grains' displacement grows by the largest move over all
+// ranks (one message, which also carries a build asked for): true when a build was asked for.
+template <int D>
+bool grow_bound_over_ranks(World<D>& world) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double moved =
+      -world.domain->min_over_ranks(-(world.rebuild_needed ? inf : world.last_move));
+  world.last_move = 0.0;
+  if (moved == inf) return true;
+  world.disp_bound += moved;
+  return false;
+}
+
 template <int D>
 bool list_expired(World<D>& world) {
   const auto& P = world.particles;
@@ -65,14 +78,7 @@ bool list_expired(World<D>& world) {
     // strain that brings grains a reach apart closer (world/periodic_cell.hpp).
     const double closing = world.cell.strain_since_build() * world.cell.reach_at_build;
     auto expired = [&](double u) { return 2.0 * u + closing > skin; };
-    if (world.domain) {  // the bound over all ranks, as for walls below
-      const double inf = std::numeric_limits<double>::infinity();
-      const double moved =
-          -world.domain->min_over_ranks(-(world.rebuild_needed ? inf : world.last_move));
-      world.last_move = 0.0;
-      if (moved == inf) return true;
-      world.disp_bound += moved;
-    }
+    if (world.domain && grow_bound_over_ranks(world)) return true;  // (as for walls below)
     if (!expired(world.disp_bound + world.radius_growth)) return false;
     const typename Dim<D>::Tensor F = world.cell.h * world.cell.h_at_build.inverse();
     // (a maximum: the same in any order)
@@ -94,12 +100,7 @@ bool list_expired(World<D>& world) {
     // asked for), and the exact pass is the largest over all ranks. (A rank's own bound and
     // exact pass would not do: a member of a growing clump moves beyond its velocity's
     // bound, so the exact pass could expire on one rank and never be reached on another.)
-    const double inf = std::numeric_limits<double>::infinity();
-    const double moved =
-        -world.domain->min_over_ranks(-(world.rebuild_needed ? inf : world.last_move));
-    world.last_move = 0.0;
-    if (moved == inf) return true;
-    world.disp_bound += moved;
+    if (grow_bound_over_ranks(world)) return true;
     if (!expired(world.disp_bound + world.radius_growth)) return false;
   } else if (!expired(world.disp_bound + world.radius_growth)) {
     return false;
