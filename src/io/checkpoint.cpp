@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
+#include <thread>
 
 #include "io/output_files.hpp"
 
@@ -91,11 +93,13 @@ void write_checkpoint_file(const std::string& path, const Checkpoint& c,
   const auto crc_at = static_cast<std::streamoff>(head.size());
   put(std::uint32_t{0});  // the checksum, written once the payload has gone through
 
-  // A temporary name of this process alone: runs side by side may write the same file.
+  // A temporary name of this process and thread alone: runs side by side (processes, or a
+  // study's runs as threads of one) may write the same file.
   const fs::path target(path);
   const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
   const std::string tmp =
-      folder + "/." + target.filename().string() + "." + std::to_string(::getpid()) + ".tmp";
+      folder + "/." + target.filename().string() + "." + std::to_string(::getpid()) + "." +
+      std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id())) + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot write " + tmp);

@@ -16,6 +16,7 @@
 #include "io/interrupt.hpp"
 #include "io/progress.hpp"
 #include "io/run_checkpoints.hpp"
+#include "lab/deposit_cache.hpp"
 #include "lab/triaxial_settings.hpp"
 #include "measure/measurements.hpp"
 #include "scene/scene_domain.hpp"
@@ -60,13 +61,38 @@ struct LabDomain {
     else
       decompose(w, nullptr, file, opt, false);
   }
-  // A deposit cache would have to carry the keys and history of the run that stored it.
-  static void refuse_deposit_cache(bool cache, const std::string& file, const RunOptions& opt) {
-    if (opt.decompose && cache)
-      throw InputError(file, 0, "soil.deposit_cache",
-                       "a deposit cache is not read or written by a run over MPI ranks yet "
-                       "(docs/parallel.md); leave it out under mpirun");
+  // A deposit cache (lab/deposit_cache.hpp) of a decomposed run holds the whole world gathered
+  // on rank 0 and the keys and contact history of its domain, so that a run over any number of
+  // ranks that loads it spreads it as a resumed checkpoint and goes on in the bits of a run that
+  // deposited it itself. Its stage has a name of its own: a one-process run's deposit (grains
+  // numbered and ordered otherwise) is never loaded by a decomposed run, nor the other way.
+  static std::string deposit_stage(const std::string& stage, const RunOptions& opt) {
+    return opt.decompose ? stage + "_ranks" : stage;
   }
+  // The cache's file as every rank of the run found it: a file that one rank sees and another
+  // does not yet (stored that moment by a run beside it) is a miss for all.
+  static std::optional<Checkpoint> load_deposit(const DepositCache& cache, const RunOptions& opt) {
+    std::optional<Checkpoint> c = cache.load();
+    if (opt.decompose && !comm::group_all(c.has_value())) c.reset();
+    return c;
+  }
+  // Stores the deposit: store(visit_domain) writes the cache on the rank that writes the run's
+  // files, with visit_domain(StateWriter&) among the runner's state. All ranks call it.
+  template <class Store>
+  void store_deposit(World<D>& w, bool root, const RunOptions& opt, Store&& store) {
+    if (!opt.decompose) return store([](StateWriter&) {});
+    DomainWorldOnRank0<D> whole(w, current.get(), saved);
+    if (root) store([this](StateWriter& a) { visit(a, false); });
+  }
+  // The domain's part of a loaded deposit (visit_domain's): read before the world, which
+  // spread_deposit() then decomposes from it.
+  void load_deposit_domain(StateReader& a, const RunOptions& opt) {
+    if (opt.decompose) visit(a, false);
+  }
+  void spread_deposit(World<D>& w, const std::string& file, const RunOptions& opt) {
+    if (opt.decompose) decompose(w, nullptr, file, opt, decomposed != 0);
+  }
+
   // The compaction grows the radii until the grains fill the box, at most to a porosity of
   // 0.1 (discs) or 0.25 (spheres), denser than radius growth packs them: about g = ((1 -
   // n_min) / solid fraction now)^(1/D) times, and the ghost width with them. Slabs thinner than

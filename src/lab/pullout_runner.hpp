@@ -83,7 +83,8 @@ struct PulloutRun {
         rng(settings.seed),
         vtk(options.out_dir),
         checkpoints("pullout", 2, settings.resolved, options.out_dir, settings.checkpoint),
-        deposit_cache(settings.deposit_cache, "pullout_foundation", settings.resolved,
+        deposit_cache(settings.deposit_cache,
+                      LabDomain<2>::deposit_stage("pullout_foundation", options), settings.resolved,
                       {"anchor", "sheet", "surcharge", "pull", "analytic", "output", "refinement",
                        "checkpoint", "seeds", "title"}) {
     vtk.with_contacts(s.vtk_contacts);

@@ -354,19 +354,29 @@ nlohmann::json run_tests(const InterfaceShearSettings& s, const RunOptions& opt)
   InterfaceShear run(s, opt);
   prepare_output_dir(opt.out_dir);
   run.build();
-  const DepositCache cache(s.deposit_cache, "interface_shear_deposit", s.resolved,
+  const DepositCache cache(s.deposit_cache,
+                           LabDomain<2>::deposit_stage("interface_shear_deposit", opt), s.resolved,
                            {"shear.normal_stress", "output", "title", "seeds"});
   std::string cache_use;
-  LabDomain<2>::refuse_deposit_cache(cache.enabled(), s.file, opt);
-  if (auto c = cache.load()) {
+  if (auto c = LabDomain<2>::load_deposit(cache, opt)) {
     // The pulled sheet is laid before the world's state goes back onto it.
     if (run.soil_base())
       add_pulled_sheet(run.w, run.box, run.sheet_axis(), s.box_length - 2.0 * s.radius);
-    DepositCache::restore(*c, run.w, [&](StateReader& a) { run.visit_deposit(a); });
+    DepositCache::restore(*c, run.w, [&](StateReader& a) {
+      run.visit_deposit(a);
+      run.domain.load_deposit_domain(a, opt);
+    });
+    run.domain.spread_deposit(run.w, s.file, opt);
     cache_use = "loaded " + cache.path();
   } else {
     run.deposit_soil();
-    cache.store(run.w, [&](StateWriter& a) { run.visit_deposit(a); });
+    if (cache.enabled())
+      run.domain.store_deposit(run.w, run.root, opt, [&](auto&& visit_domain) {
+        cache.store(run.w, [&](StateWriter& a) {
+          run.visit_deposit(a);
+          visit_domain(a);
+        });
+      });
     if (cache.enabled()) cache_use = "stored " + cache.path();
   }
   run.deposit = run.w;

@@ -95,11 +95,16 @@ void PulloutRun::start() {
   prepare_output_dir(opt.out_dir);
   if (root) prep_csv.open(prep_path(), kPrepColumns);
   phase = Phase::kFoundation;
-  LabDomain<2>::refuse_deposit_cache(deposit_cache.enabled(), s.file, opt);
-  if (auto c = deposit_cache.load()) {
+  if (auto c = LabDomain<2>::load_deposit(deposit_cache, opt)) {
     // The foundation as the cache holds it; the run goes on from the end of its deposit.
     DepositCache::restore(
-        *c, w, [&](StateReader& a) { visit_state(a); }, prep_path(), &prep_csv, kPrepColumns);
+        *c, w,
+        [&](StateReader& a) {
+          visit_state(a);
+          domain.load_deposit_domain(a, opt);
+        },
+        prep_path(), root ? &prep_csv : nullptr, kPrepColumns);
+    domain.spread_deposit(w, s.file, opt);
     deposit_loaded = true;
     prep["deposit_cache"] = "loaded " + deposit_cache.path();
   }
@@ -206,8 +211,16 @@ void PulloutRun::foundation_phase() {
   if (!deposit_loaded) {
     deposit_to(y0 + 2.0 * s.radius, 0.0, s.box_length, "foundation", 1);
     if (deposit_cache.enabled()) {
-      deposit_cache.store(
-          w, [&](StateWriter& a) { visit_state(a); }, prep_path(), &prep_csv);
+      // (a decomposed run: rank 0 stores the whole foundation, with its domain's keys)
+      domain.store_deposit(w, root, opt, [&](auto&& visit_domain) {
+        deposit_cache.store(
+            w,
+            [&](StateWriter& a) {
+              visit_state(a);
+              visit_domain(a);
+            },
+            prep_path(), &prep_csv);
+      });
       prep["deposit_cache"] = "stored " + deposit_cache.path();
     }
   }

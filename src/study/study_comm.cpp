@@ -125,6 +125,17 @@ int group_size() {
   return g_group_size;
 }
 
+bool group_all(bool mine) {
+#ifdef GEODEM_HAVE_MPI
+  if (g_active) {
+    int all = mine ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_LAND, group_communicator());
+    return all != 0;
+  }
+#endif
+  return mine;
+}
+
 #ifdef GEODEM_HAVE_MPI
 MPI_Comm group_communicator() {
   return g_group != MPI_COMM_NULL ? g_group : MPI_COMM_WORLD;

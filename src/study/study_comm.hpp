@@ -31,5 +31,9 @@ int group();                                  // this rank's group
 int groups();                                 // how many
 int group_rank();                             // this rank within its group
 int group_size();                             // ranks per group
+// Whether `mine` holds on every rank of this rank's group (all of them call it; without MPI,
+// `mine`): a decision every rank of a run must take alike, such as loading a file that one rank
+// may find and another not yet.
+bool group_all(bool mine);
 
 }  // namespace geodem::comm

@@ -72,26 +72,20 @@ nlohmann::json run_or_resume(const Settings& settings, RunOptions ro, Run run) {
 struct CheckedRun {
   nlohmann::json resolved;
   std::function<nlohmann::json(const RunOptions&)> run;
-  // May run over a group of ranks: a triaxial-kind run, a pull-out or an interface shear test
-  // without a deposit cache.
-  bool spreads = false;
 };
 
 CheckedRun check_run(const toml::table& scenario, const std::string& file) {
   const std::string kind = scenario["kind"].value_or(std::string("triaxial"));
   if (kind == "interface_shear") {
     auto s = std::make_shared<InterfaceShearSettings>(read_interface_shear(scenario, file));
-    return {s->resolved, [s](const RunOptions& ro) { return run_interface_shear(*s, ro); },
-            s->deposit_cache.empty()};
+    return {s->resolved, [s](const RunOptions& ro) { return run_interface_shear(*s, ro); }};
   }
   if (kind == "pullout") {
     auto s = std::make_shared<PulloutSettings>(read_pullout(scenario, file));
-    return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_pullout); },
-            s->deposit_cache.empty()};
+    return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_pullout); }};
   }
   auto s = std::make_shared<TriaxialSettings>(read_triaxial(scenario, file));
-  return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_triaxial); },
-          true};
+  return {s->resolved, [s](const RunOptions& ro) { return run_or_resume(*s, ro, run_triaxial); }};
 }
 
 std::string format_duration(double s) {
@@ -203,11 +197,6 @@ std::vector<nlohmann::json> StudyExecutor::run(const std::vector<StudyRun>& runs
   // A group of ranks runs its runs one at a time, each spread over the group's ranks (and
   // `workers` threads in each); the group's first rank writes the run's files.
   const bool grouped = comm::group_size() > 1;
-  for (const auto& c : settings)
-    if (grouped && !c.spreads)
-      throw InputError(opt_.file, 0, "--ranks-per-run",
-                       "the runs of this study (a pull-out or interface shear with a deposit "
-                       "cache) are not spread over ranks yet: give --ranks-per-run 1");
   const bool writes = comm::group_rank() == 0;
   const std::vector<std::size_t> mine = my_share(runs);
   double share_cost = 0.0;

@@ -5,8 +5,9 @@ with the same bits for any K: a sheet pulled out between two layers of bonded pa
 one deposited; two normal stresses, each test from a copy of the deposit and its domain) and
 the same soil sheared over a rigid base, on 1 rank and on 2 ranks (2 threads each for the
 first), write the same history.csv and results, the last VTK frame in one piece per rank
-holding every grain once. SIGTERM on 2 ranks stops both with an "interrupted" summary; a
-deposit cache under mpirun is refused with exit code 2.
+holding every grain once. SIGTERM on 2 ranks stops both with an "interrupted" summary. A deposit
+cache stored by a run on 2 ranks is loaded by runs on 4 ranks and on 1, which give the results of
+the run without a cache.
 
     test_interface_ranks.py PATH/TO/geodem
 Exit 77 (skipped) without mpirun or without MPI in geodem.
@@ -87,12 +88,30 @@ def main() -> int:
         check(p.returncode != 0 and status == "interrupted",
               f"SIGTERM on 2 ranks: exit {p.returncode}, summary {status}")
 
-        # A deposit cache is not shared by a decomposed run yet: exit 2 naming the key.
-        r = subprocess.run(args(2, soil, os.path.join(tmp, "cached"), "--set",
-                                f"soil.deposit_cache=\"{os.path.join(tmp, 'cache')}\""),
-                           env=env, text=True, capture_output=True, timeout=600)
-        check(r.returncode == 2 and "soil.deposit_cache" in r.stderr,
-              f"a deposit cache under mpirun refused: exit {r.returncode}")
+        # A deposit cache: stored by a run on 2 ranks (the whole deposit with its domain's keys
+        # and contact history), loaded by runs on 4 ranks and on 1; every run gives the results
+        # of the run without a cache (the soil base's, above), the cache's note aside.
+        cache = os.path.join(tmp, "cache")
+        ref_out = os.path.join(tmp, "soil.1")
+        soil_ref = (outputs(ref_out) if os.path.exists(os.path.join(ref_out, "summary.json"))
+                    else None)
+        notes = []
+        for ranks in (2, 4, 1):
+            out = os.path.join(tmp, f"cached.{ranks}")
+            r = subprocess.run(args(ranks, soil, out, "--set", f'soil.deposit_cache="{cache}"'),
+                               env=env, text=True, capture_output=True, timeout=600)
+            if r.returncode != 0 or soil_ref is None:
+                check(False, f"with a deposit cache on {ranks} ranks: {r.stderr}")
+                continue
+            cached = outputs(out)
+            notes.append(cached["results"].pop("deposit_cache", "").split(" ")[0])
+            check(cached == soil_ref,
+                  f"with a deposit cache on {ranks} ranks ({notes[-1]}): the history and results "
+                  f"of the run without one")
+        stored = [f for f in os.listdir(cache)] if os.path.isdir(cache) else []
+        check(notes == ["stored", "loaded", "loaded"] and len(stored) == 1 and
+              stored[0].startswith("interface_shear_deposit_ranks_"),
+              f"the cache stored once, by the first run ({stored}), loaded by the others ({notes})")
 
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0

@@ -7,8 +7,8 @@ spilled grains are removed, a surcharge plate, bonds, then the pull) on 1 rank a
 history.csv, preparation.csv, tension_profiles.csv, grain and sheet states and results. Killed by
 SIGKILL on 2 ranks and resumed on 4, or stopped by SIGTERM on 2 ranks and resumed by one
 process without mpirun, it writes the files of the uninterrupted run, its last VTK frame in one
-piece per rank holding every grain once. A deposit cache under mpirun is refused with exit
-code 2.
+piece per rank holding every grain once. A deposit cache stored by a run on 2 ranks is loaded by
+runs on 4 ranks and on 1, which write the files of the run without a cache.
 
     test_pullout_ranks.py PATH/TO/geodem
 Exit 77 (skipped) without mpirun or without MPI in geodem.
@@ -111,11 +111,27 @@ def main() -> int:
                 check(count == max(then, 1) and sorted(ids) == final,
                       f"its last VTK frame in {count} pieces holding every grain once")
 
-        # A deposit cache is not shared by a decomposed run yet: exit 2 naming the key.
-        r = run(2, os.path.join(tmp, "cached"), "--set",
-                f"soil.deposit_cache=\"{os.path.join(tmp, 'cache')}\"")
-        check(r.returncode == 2 and "soil.deposit_cache" in r.stderr,
-              f"a deposit cache under mpirun refused: exit {r.returncode}")
+        # A deposit cache: the foundation stored by a run on 2 ranks (gathered whole with its
+        # domain's keys and contact history), loaded by runs on 4 ranks and on 1; each writes
+        # every file of the run without a cache, the preparation's note of the cache aside.
+        cache = os.path.join(tmp, "cache")
+        notes = []
+        for ranks in (2, 4, 1):
+            out = os.path.join(tmp, f"cached.{ranks}")
+            r = run(ranks, out, "--set", f'soil.deposit_cache="{cache}"')
+            if r.returncode != 0 or ref is None:
+                check(False, f"with a deposit cache on {ranks} ranks: {r.stderr}")
+                continue
+            got = outputs(out)
+            notes.append(got["results"]["preparation"].pop("deposit_cache", "").split(" ")[0])
+            for part in got:
+                check(got[part] == ref[part],
+                      f"{part} with a deposit cache on {ranks} ranks ({notes[-1]}) the same as "
+                      f"without one")
+        stored = os.listdir(cache) if os.path.isdir(cache) else []
+        check(notes == ["stored", "loaded", "loaded"] and len(stored) == 1 and
+              stored[0].startswith("pullout_foundation_ranks_"),
+              f"the cache stored once, by the first run ({stored}), loaded by the others ({notes})")
 
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0
