@@ -79,13 +79,15 @@ class SlabDomain final : public DomainHooks<D> {
     return std::shared_ptr<SlabDomain>(new SlabDomain(*this));
   }
   DomainComm& comm() { return *comm_; }
-  // Every this many list builds the cuts move so that each slab holds the same work, from
-  // each rank's measured step time per grain, unless the slowest rank is within
-  // rebalance_tolerance of an even share (0, the default: never; on B2's bed every 10 builds
-  // over-corrected at 20,000 grains, docs/parallel.md). Results do not depend on it: any cuts
-  // give the same bits.
-  int rebalance_every = 0;
+  // Every this many list builds each rank's work per grain is measured (its step time less
+  // its time in messages); when the slowest rank is over rebalance_tolerance above an even
+  // share in rebalance_persistence such windows in a row, the cuts move rebalance_damping of
+  // the way to equal work (domain/balanced_cuts.hpp). 0: the cuts never move. Results do not
+  // depend on it: any cuts give the same bits (docs/parallel.md, "Rebalancing").
+  int rebalance_every = 10;
   double rebalance_tolerance = 0.05;
+  int rebalance_persistence = 2;
+  double rebalance_damping = 0.5;
   const std::vector<double>& cuts() const { return cuts_; }
   double ghost_width() const { return ghost_width_; }
   // The thinnest an inner slab may be: the ghost width and the clumps' reach.
@@ -185,6 +187,7 @@ class SlabDomain final : public DomainHooks<D> {
   // The rank's time in messages (waiting included) and its work when the cuts last moved.
   double comm_seconds_ = 0.0, work_at_rebalance_ = 0.0;
   int builds_since_rebalance_ = 0;
+  int uneven_windows_ = 0;  // windows in a row whose work was uneven
   std::uint64_t migrated_ = 0;
 };
 

@@ -4,14 +4,16 @@
 #include <cmath>
 #include <cstring>
 
+#include "domain/balanced_cuts.hpp"
 #include "domain/slab_domain.hpp"
 
 namespace geodem {
 
-// New cuts: each rank's step time since the last move, less its time in messages, spread over
-// its grains, binned along x and gathered; every rank then cuts the same histogram at equal
-// shares. A cut moves at most to a ghost width from its neighbours' old cuts, so that a grain
-// changes ranks by one at most, and inner slabs stay a ghost width across.
+// Each rank's step time since the last window, less its time in messages, spread over its
+// grains, binned along x and gathered; every rank then sees the same bins. The cuts move only
+// when the work was uneven in `rebalance_persistence` windows in a row (a hiccup of the machine
+// in one window moves nothing), and then `rebalance_damping` of the way to equal shares
+// (balanced_cuts). The next build migrates the grains.
 template <int D>
 void SlabDomain<D>::rebalance(const World<D>& world) {
   const auto& P = world.particles;
@@ -34,37 +36,20 @@ void SlabDomain<D>::rebalance(const World<D>& world) {
   Bytes out(kBins * sizeof(double));
   std::memcpy(out.data(), bins.data(), out.size());
   const Bytes all = comm_->all_gather(out);
-  std::vector<double> total(kBins, 0.0);
-  double slowest = 0.0;
+  std::vector<double> total(kBins, 0.0), rank_work(static_cast<std::size_t>(ranks), 0.0);
   for (int r = 0; r < ranks; ++r) {  // in rank order: the same sums on every rank
-    double rank_work = 0.0;
     for (std::size_t b = 0; b < kBins; ++b) {
       double v;
       std::memcpy(&v, all.data() + (static_cast<std::size_t>(r) * kBins + b) * sizeof v, sizeof v);
       total[b] += v;
-      rank_work += v;
+      rank_work[static_cast<std::size_t>(r)] += v;
     }
-    slowest = std::max(slowest, rank_work);
   }
-  double sum = 0.0;
-  for (double v : total) sum += v;
   // Near an even share the cuts stay: moving them for timing noise costs migrations.
-  if (!(sum > 0.0) || slowest <= (1.0 + rebalance_tolerance) * sum / ranks) return;
-  const std::vector<double> old = cuts_;
-  double cumulative = 0.0;
-  std::size_t b = 0;
-  for (int q = 1; q < ranks; ++q) {
-    const double target = sum * q / ranks;
-    while (b < kBins && cumulative + total[b] < target) cumulative += total[b++];
-    const double inside = b < kBins && total[b] > 0.0 ? (target - cumulative) / total[b] : 0.0;
-    double cut = x0 + span * (static_cast<double>(b) + inside) / static_cast<double>(kBins);
-    const auto uq = static_cast<std::size_t>(q);
-    const double thinnest = in_cuts(min_slab());
-    double lo = old[uq - 1] + thinnest, hi = old[uq + 1] - thinnest;
-    if (q > 1) lo = std::max(lo, cuts_[uq - 1] + thinnest);
-    cut = std::min(std::max(cut, lo), hi);
-    cuts_[uq] = lo <= hi ? cut : old[uq];
-  }
+  uneven_windows_ = imbalanced(rank_work, rebalance_tolerance) ? uneven_windows_ + 1 : 0;
+  if (uneven_windows_ < std::max(rebalance_persistence, 1)) return;
+  uneven_windows_ = 0;
+  cuts_ = balanced_cuts(total, cuts_, x0, span, in_cuts(min_slab()), rebalance_damping);
 }
 
 // (the class's other members are instantiated in slab_domain.cpp)
