@@ -91,13 +91,14 @@ int run(const SceneSettings& s, long steps, bool domain, int rebalance_every) {
   if (domain) {
     comm = std::make_shared<TimedComm>(mpi_domain_comm());
     d = SlabDomain<D>::distribute(w, comm);
-    d->rebalance_every = rebalance_every;
+    if (rebalance_every >= 0) d->rebalance_every = rebalance_every;  // else the domain's default
   }
   if (w.dt <= 0.0) update_timestep(w);
   w.measure_this_step = false;  // the runners measure on their record steps only
   step(w);
   if (comm) comm->seconds = 0.0;
   const std::uint64_t builds0 = w.nlist.builds;
+  const std::vector<double> cuts0 = d ? d->cuts() : std::vector<double>{};
   MPI_Barrier(MPI_COMM_WORLD);
   const auto t0 = Clock::now();
   for (long k = 0; k < steps; ++k) step(w);
@@ -116,6 +117,11 @@ int run(const SceneSettings& s, long steps, bool domain, int rebalance_every) {
       1024.0 * static_cast<double>(peak) / static_cast<double>(owned));
   std::fflush(stdout);
   MPI_Barrier(MPI_COMM_WORLD);
+  if (rank == 0 && d)
+    std::printf(
+        "cuts moved: %s; modelled work of the busiest rank at the last window: %.3f of "
+        "an even share\n",
+        d->cuts() == cuts0 ? "no" : "yes", d->work_imbalance());
   if (rank == 0) {
     std::printf("rank 0 stages (s, whole run):");
     for (int k = 0; k < static_cast<int>(Stage::kCount); ++k)
@@ -147,7 +153,7 @@ int main(int argc, char** argv) {
     const geodem::SceneSettings s = geodem::read_scene(root, argv[1]);
     const long steps = std::atol(argv[2]);
     const bool domain = std::strcmp(argv[3], "domain") == 0;
-    const int rebalance = argc == 5 ? std::atoi(argv[4]) : 0;
+    const int rebalance = argc == 5 ? std::atoi(argv[4]) : -1;
     rc = s.dimension == 2 ? geodem::run<2>(s, steps, domain, rebalance)
                           : geodem::run<3>(s, steps, domain, rebalance);
   } catch (const std::exception& e) {

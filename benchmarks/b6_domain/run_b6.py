@@ -48,8 +48,9 @@ def main(argv):
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2, 4])
     ap.add_argument("--threads", type=int, default=1, help="threads of each process")
-    ap.add_argument("--rebalance", type=int, default=0,
-                    help="move the cuts every this many list builds (0: never)")
+    ap.add_argument("--rebalance", type=int, default=-1,
+                    help="measure the work every this many list builds and move the cuts when "
+                         "it stays uneven (0: never; default: the domain's, every 10)")
     ap.add_argument("--work", default=str(HERE.parent / "results" / "b6"))
     ap.add_argument("--build", default=str(HERE.parent.parent / "build"))
     a = ap.parse_args(argv[1:])

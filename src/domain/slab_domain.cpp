@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "base/cpu_time.hpp"
 #include "base/error.hpp"
 #include "broadphase/list_history.hpp"
 #include "broadphase/periodic_search.hpp"
@@ -122,8 +123,8 @@ std::shared_ptr<SlabDomain<D>> SlabDomain<D>::distribute(World<D>& world,
   d->set_slab_starts(world);
   world.sort_interval = 0;  // the domain orders the grains (by key)
   world.rebuild_needed = true;
-  // The rank's work is counted from here (a world from a checkpoint brings its stage times).
-  for (double t : world.stage_seconds) d->work_at_rebalance_ += t;
+  // The rank's work (its thread's CPU time) is counted from here.
+  d->work_at_rebalance_ = thread_cpu_seconds();
   // World-wide counts that ranks add up start on rank 0 alone.
   if (me != 0) world.broken_bonds = 0;
   world.domain = d;
@@ -232,36 +233,40 @@ std::size_t SlabDomain<D>::owned(const World<D>& world) const {
 }
 
 namespace {
-// Adds the wall time of a scope to a total.
+// Adds the wall time of a scope to a total, and the calling thread's CPU time to another.
 class Timed {
  public:
-  explicit Timed(double& total) : total_(total) {}
-  ~Timed() { total_ += std::chrono::duration<double>(Clock::now() - t0_).count(); }
+  Timed(double& wall, double& cpu) : wall_(wall), cpu_(cpu) {}
+  ~Timed() {
+    wall_ += std::chrono::duration<double>(Clock::now() - t0_).count();
+    cpu_ += thread_cpu_seconds() - cpu0_;
+  }
   Timed(const Timed&) = delete;
   Timed& operator=(const Timed&) = delete;
 
  private:
   using Clock = std::chrono::steady_clock;
-  double& total_;
+  double &wall_, &cpu_;
   Clock::time_point t0_ = Clock::now();
+  double cpu0_ = thread_cpu_seconds();
 };
 }  // namespace
 
 template <int D>
 bool SlabDomain<D>::any_rank(bool here) {
-  Timed t(comm_seconds_);
+  Timed t(comm_seconds_, comm_cpu_seconds_);
   return comm_->max(here ? 1.0 : 0.0) > 0.5;
 }
 
 template <int D>
 double SlabDomain<D>::min_over_ranks(double here) {
-  Timed t(comm_seconds_);
+  Timed t(comm_seconds_, comm_cpu_seconds_);
   return comm_->min(here);
 }
 
 template <int D>
 std::string SlabDomain<D>::first_text(const std::string& here) {
-  Timed t(comm_seconds_);
+  Timed t(comm_seconds_, comm_cpu_seconds_);
   // Each rank's text with its length in front, in rank order.
   const std::uint64_t n = here.size();
   Bytes framed(sizeof n + here.size());
@@ -282,13 +287,13 @@ std::string SlabDomain<D>::first_text(const std::string& here) {
 template <int D>
 void SlabDomain<D>::exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower,
                              Bytes& from_upper) {
-  Timed t(comm_seconds_);
+  Timed t(comm_seconds_, comm_cpu_seconds_);
   comm_->exchange(to_lower, to_upper, from_lower, from_upper);
 }
 
 template <int D>
 void SlabDomain<D>::sum(std::vector<ExactSum>& sums) {
-  Timed t(comm_seconds_);
+  Timed t(comm_seconds_, comm_cpu_seconds_);
   comm_->sum(sums);
 }
 

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -75,20 +76,32 @@ class SlabDomain final : public DomainHooks<D> {
 
   // A copy of this domain's state, for a copy of its world (a lab test's prepared sample,
   // which each test starts from): the copy goes on as this domain would from here.
+  // (Its work is counted afresh from its first window: the copy may step on another thread.)
   std::shared_ptr<SlabDomain> copy() const {
-    return std::shared_ptr<SlabDomain>(new SlabDomain(*this));
+    auto d = std::shared_ptr<SlabDomain>(new SlabDomain(*this));
+    d->work_at_rebalance_ = std::numeric_limits<double>::quiet_NaN();
+    d->uneven_windows_ = 0;
+    return d;
   }
   DomainComm& comm() { return *comm_; }
-  // Every this many list builds each rank's work per grain is measured (its step time less
-  // its time in messages); when the slowest rank is over rebalance_tolerance above an even
-  // share in rebalance_persistence such windows in a row, the cuts move rebalance_damping of
-  // the way to equal work (domain/balanced_cuts.hpp). 0: the cuts never move. Results do not
-  // depend on it: any cuts give the same bits (docs/parallel.md, "Rebalancing").
+  // Every this many list builds the ranks weigh their grains' work; when the busiest rank is
+  // over rebalance_tolerance above an even share in rebalance_persistence such windows in a
+  // row, the cuts move rebalance_damping of the way to equal work (domain/balanced_cuts.hpp).
+  // The work is modelled from each grain's contacts (the same on every run: the cuts are
+  // reproducible), or with rebalance_on_time measured as each rank's thread CPU time less
+  // that in messages (it sees a slower machine, but also its noise: on a 2-core machine it
+  // moved cuts off a balanced bed; then a persistence of 2 and a damping of 0.5 are advised).
+  // 0: the cuts never move. Results do not depend on it: any cuts give the same bits
+  // (docs/parallel.md, "Rebalancing").
   int rebalance_every = 10;
   double rebalance_tolerance = 0.05;
-  int rebalance_persistence = 2;
-  double rebalance_damping = 0.5;
+  int rebalance_persistence = 1;
+  double rebalance_damping = 1.0;
+  bool rebalance_on_time = false;
   const std::vector<double>& cuts() const { return cuts_; }
+  // The busiest rank's work over an even share at the last window (1: balanced; before it
+  // moved the cuts), 0 before the first.
+  double work_imbalance() const { return work_imbalance_; }
   double ghost_width() const { return ghost_width_; }
   // The thinnest an inner slab may be: the ghost width and the clumps' reach.
   double thinnest_slab() const { return min_slab(); }
@@ -103,7 +116,11 @@ class SlabDomain final : public DomainHooks<D> {
   explicit SlabDomain(std::shared_ptr<DomainComm> comm) : comm_(std::move(comm)) {}
   int owner(double x) const;
   void rebalance(const World<D>& world);
-  // comm_->exchange, its time (waiting included) counted in comm_seconds_.
+  // Each local grain's work for the rebalance (ghosts: 0 or unused), modelled or measured.
+  std::vector<double> modelled_work(const World<D>& world) const;
+  std::vector<double> measured_work(const World<D>& world);
+  // comm_->exchange, its time (waiting included) counted in comm_seconds_ (wall) and
+  // comm_cpu_seconds_ (the thread's CPU).
   void exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower, Bytes& from_upper);
   std::uint64_t cell_key(const typename Dim<D>::Vec& x, std::uint32_t id) const;
   // The keys' grid over the box [lo, hi] of the domain's `grains`, and the block of keys of a
@@ -184,10 +201,12 @@ class SlabDomain final : public DomainHooks<D> {
   std::vector<std::uint32_t> send_lower_, send_upper_, recv_lower_, recv_upper_;
   Bytes halo_out_lower_, halo_out_upper_, halo_in_lower_, halo_in_upper_;  // kept: no allocation
   std::size_t halo_bytes_ = 0;
-  // The rank's time in messages (waiting included) and its work when the cuts last moved.
-  double comm_seconds_ = 0.0, work_at_rebalance_ = 0.0;
+  // The rank's time in messages (waiting included: wall and CPU time) and its CPU time at the
+  // end of the last window (NaN: not taken yet on this thread).
+  double comm_seconds_ = 0.0, comm_cpu_seconds_ = 0.0, work_at_rebalance_ = 0.0;
   int builds_since_rebalance_ = 0;
   int uneven_windows_ = 0;  // windows in a row whose work was uneven
+  double work_imbalance_ = 0.0;
   std::uint64_t migrated_ = 0;
 };
 

@@ -57,11 +57,12 @@ std::vector<World<D>> on_ranks(bool extras, int sort_interval, int ranks, bool& 
       w = packing<D>(extras, sort_interval, one_slab, threads_each);
       auto d = SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r));
       d->rebalance_every = rebalance_every;
-      // Moved whenever the times differ, at once and all the way (big moves: grains change
-      // ranks; the damped moves of a run are tested in balanced_cuts_test.cpp).
+      // Moved by measured times whenever they differ, at once and all the way (big moves:
+      // grains change ranks; the damped moves are tested in balanced_cuts_test.cpp).
       d->rebalance_tolerance = 0.0;
       d->rebalance_persistence = 1;
       d->rebalance_damping = 1.0;
+      d->rebalance_on_time = true;
       const std::vector<double> cuts = d->cuts();
       advance(w);
       if (cuts_moved && r == 0) *cuts_moved = d->cuts() != cuts;
@@ -203,6 +204,54 @@ TYPED_TEST(DomainTest, RemovingGrainsKeepsTheBitsOfOneRank) {
     ASSERT_TRUE(g.pos == it->second.pos && g.vel == it->second.vel && g.angvel == it->second.angvel)
         << "grain " << id;
   }
+}
+
+// The top of the left half removed at the start (the first rank's slab then has half the
+// second's grains): with the cuts moved by the modelled work (a grain and its contacts) every 2
+// builds, the ranks own about as many grains again; with the cuts kept they stay apart. The
+// bits are those of one rank either way.
+TYPED_TEST(DomainTest, ModelledWorkEvensTheRanks) {
+  constexpr int D = TypeParam::value;
+  auto run = [&](int ranks, int every, std::vector<std::size_t>& owned) {
+    Hub hub(ranks);
+    std::vector<World<D>> parts(static_cast<std::size_t>(ranks));
+    owned.assign(parts.size(), 0);
+    std::vector<std::thread> threads;
+    for (int r = 0; r < ranks; ++r)
+      threads.emplace_back([&, r] {
+        auto& w = parts[static_cast<std::size_t>(r)];
+        w = packing<D>(false, 3);
+        typename Dim<D>::Vec mid = Dim<D>::Vec::Zero();
+        for (const auto& x : w.particles.pos) mid += x;
+        mid /= static_cast<double>(w.particles.size());
+        auto d = SlabDomain<D>::distribute(w, std::make_shared<ThreadComm>(hub, r));
+        d->rebalance_every = every;
+        const auto& P = w.particles;
+        remove_grains(
+            w,
+            grains_where(
+                w, [&](std::size_t i) { return P.pos[i].x() < mid.x() && P.pos[i].y() > mid.y(); }),
+            ContactHistory::kKeep);
+        advance(w);
+        owned[static_cast<std::size_t>(r)] = d->owned(w);
+      });
+    for (auto& t : threads) t.join();
+    return parts;
+  };
+  std::vector<std::size_t> one_owned, kept, evened;
+  std::size_t ghosts = 0;
+  const auto one = run(1, 2, one_owned);
+  const std::size_t ids = one[0].particles.next_id;
+  const auto reference = by_id(one, ids, ghosts);
+  const auto fixed = run(2, 0, kept);
+  const auto moved = run(2, 2, evened);
+  expect_same<D>(by_id(fixed, ids, ghosts), reference);
+  expect_same<D>(by_id(moved, ids, ghosts), reference);
+  const auto ratio = [](const std::vector<std::size_t>& n) {
+    return static_cast<double>(std::max(n[0], n[1])) / static_cast<double>(std::min(n[0], n[1]));
+  };
+  EXPECT_GT(ratio(kept), 1.3) << kept[0] << " and " << kept[1] << " grains: the case is even";
+  EXPECT_LT(ratio(evened), 1.1) << evened[0] << " and " << evened[1] << " grains";
 }
 
 // A checkpoint of a decomposed run (the whole domain gathered on rank 0 as one world, the
