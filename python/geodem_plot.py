@@ -13,6 +13,7 @@ matplotlib only.
 import csv
 import json
 import math
+import os
 import signal
 import sys
 from pathlib import Path
@@ -918,4 +919,11 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    code = main(sys.argv)
+    if len(sys.argv) > 1 and sys.argv[1] == "--wait":
+        # The run waits for us: leave without the interpreter's teardown of numpy and
+        # matplotlib (0.06 s of the 0.29 s between "go" and our exit on B1's two figures).
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    sys.exit(code)
