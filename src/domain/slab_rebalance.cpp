@@ -16,10 +16,10 @@ namespace geodem {
 // in one window moves nothing), and then `rebalance_damping` of the way to equal shares
 // (balanced_cuts). The next build migrates the grains.
 // A grain's work in the model: 1 for its integration and search, and kPairWork for each
-// contact pair, wall pair or spar-element pair its rank computes for it (a pair of two owned grains half to
-// each, a pair with a ghost wholly to the owned grain). kPairWork from B2's settled bed on one
-// process: the force stage 64 % of a step, the integration and search 36 %, at 3.5 listed
-// pairs a grain (1.77 / 3.5 = 0.5).
+// contact pair, wall pair or spar-element pair its rank computes for it (a pair of two owned grains
+// half to each, a pair with a ghost wholly to the owned grain). kPairWork from B2's settled bed on
+// one process: the force stage 64 % of a step, the integration and search 36 %, at 3.5 listed pairs
+// a grain (1.77 / 3.5 = 0.5).
 constexpr double kPairWork = 0.5;
 
 template <int D>
