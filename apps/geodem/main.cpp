@@ -54,7 +54,7 @@ int run_main(int argc, char** argv) {
 
   std::string scenario, out_dir = "out", plot_dir, resume_dir, run_kind;
   std::vector<std::string> overrides;
-  int threads = geodem::default_threads(), ranks_per_run = 1;
+  int threads = geodem::default_threads(), ranks_per_run = 1, rebalance = 10;
   bool quiet = false, overwrite = false;
 
   auto* run = app.add_subcommand("run", "run a scenario");
@@ -70,6 +70,11 @@ int run_main(int argc, char** argv) {
                   "studies under mpirun: each run spread over this many ranks (a group; the "
                   "ranks must be a multiple of it)")
       ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  run->add_option("--rebalance", rebalance,
+                  "a run over the ranks of mpirun: weigh each rank's work every N neighbour-list "
+                  "builds and move the cuts between them when it is uneven (0: never)")
+      ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   run->add_flag("--quiet", quiet, "no progress display");
   run->add_flag("--overwrite", overwrite,
@@ -115,6 +120,7 @@ int run_main(int argc, char** argv) {
     opt.out_dir = out_dir;
     opt.quiet = quiet;
     opt.threads = threads;
+    opt.rebalance_every = rebalance;
     if (!resume_dir.empty()) {
       if (run->count("--out") && out_dir != resume_dir)
         throw geodem::InputError("", 0, "--out",

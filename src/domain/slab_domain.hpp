@@ -73,6 +73,7 @@ class SlabDomain final : public DomainHooks<D> {
   // throws InputError when a slab is then too thin. All ranks call it.
   void grains_added(World<D>& world, std::size_t first_grain, std::size_t first_clump);
   void after_integration(World<D>& world) override;
+  std::uint64_t region_moves() const override { return cut_moves_; }
 
   // A copy of this domain's state, for a copy of its world (a lab test's prepared sample,
   // which each test starts from): the copy goes on as this domain would from here.
@@ -207,6 +208,7 @@ class SlabDomain final : public DomainHooks<D> {
   int builds_since_rebalance_ = 0;
   int uneven_windows_ = 0;  // windows in a row whose work was uneven
   double work_imbalance_ = 0.0;
+  std::uint64_t cut_moves_ = 0;  // rebalances that moved a cut
   std::uint64_t migrated_ = 0;
 };
 

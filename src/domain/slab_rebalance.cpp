@@ -90,7 +90,9 @@ void SlabDomain<D>::rebalance(const World<D>& world) {
   uneven_windows_ = imbalanced(rank_work, rebalance_tolerance) ? uneven_windows_ + 1 : 0;
   if (uneven_windows_ < std::max(rebalance_persistence, 1)) return;
   uneven_windows_ = 0;
+  const std::vector<double> old = cuts_;
   cuts_ = balanced_cuts(total, cuts_, x0, span, in_cuts(min_slab()), rebalance_damping);
+  if (cuts_ != old) ++cut_moves_;
 }
 
 // (the class's other members are instantiated in slab_domain.cpp)

@@ -83,6 +83,10 @@ nlohmann::json timing_json(const World<D>& world, double wall_s, std::uint64_t s
     stages[stage_name(static_cast<Stage>(s))] = world.stage_seconds[s];
   t["stages_s"] = stages;
   t["neighbour_list_builds"] = world.nlist.builds;
+  if (world.domain) {  // a run over the ranks of mpirun
+    t["ranks"] = world.domain->ranks();
+    t["rebalance_moves"] = world.domain->region_moves();
+  }
   return t;
 }
 

@@ -20,6 +20,9 @@ struct RunOptions {
   bool decompose = false;
   // Writes the outputs: false on the ranks of a decomposed run other than rank 0.
   bool primary = true;
+  // A decomposed run weighs its ranks' work every this many list builds and moves the cuts
+  // when it is uneven (SlabDomain::rebalance_every; 0: never).
+  int rebalance_every = 10;
 };
 
 // Creates DIR and DIR/vtk (exit code 1 on failure).

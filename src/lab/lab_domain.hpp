@@ -40,8 +40,10 @@ struct LabDomain {
                  bool resumed) {
     if (!opt.decompose && !resumed) return;
     const bool local = !opt.decompose;
-    current = decompose_world(w, file, resumed ? &saved : nullptr, local);
-    if (prep) prepared = decompose_world(*prep, file, resumed ? &saved_prepared : nullptr, local);
+    current = decompose_world(w, file, resumed ? &saved : nullptr, local, opt.rebalance_every);
+    if (prep)
+      prepared = decompose_world(*prep, file, resumed ? &saved_prepared : nullptr, local,
+                                 opt.rebalance_every);
     saved = saved_prepared = DomainCheckpoint<D>{};
   }
   // The triaxial kind's: as decompose(); slabs the compaction will make too thin are refused at

@@ -102,10 +102,10 @@ nlohmann::json run(const SceneSettings& s, const RunOptions& opt) {
   // Over the ranks of mpirun: each keeps its slab of the world it built (bonds included) or
   // loaded from a checkpoint (on any number of ranks). One process that resumes a decomposed
   // run goes on as a domain of one rank (the same bits).
-  const auto domain =
-      opt.decompose || was_decomposed
-          ? decompose_scene(s, w, was_decomposed ? &saved_domain : nullptr, !opt.decompose)
-          : nullptr;
+  const auto domain = opt.decompose || was_decomposed
+                          ? decompose_scene(s, w, was_decomposed ? &saved_domain : nullptr,
+                                            !opt.decompose, opt.rebalance_every)
+                          : nullptr;
   saved_domain = DomainCheckpoint<D>{};
   auto positions = [&] { return domain ? domain_positions_by_id(w, *domain) : positions_by_id(w); };
 

@@ -13,11 +13,14 @@ namespace geodem {
 
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_world(World<D>& world, const std::string& file,
-                                               const DomainCheckpoint<D>* resumed, bool local) {
+                                               const DomainCheckpoint<D>* resumed, bool local,
+                                               int rebalance_every) {
   try {
     const std::shared_ptr<DomainComm> comm =
         local ? std::make_shared<LocalDomainComm>() : mpi_domain_comm();
-    return SlabDomain<D>::distribute(world, comm, resumed);
+    auto domain = SlabDomain<D>::distribute(world, comm, resumed);
+    domain->rebalance_every = rebalance_every;
+    return domain;
   } catch (const InputError& e) {  // too many ranks for the grains: name the file
     throw InputError(file, 0, "mpirun -n", e.detail());
   }
@@ -25,8 +28,9 @@ std::shared_ptr<SlabDomain<D>> decompose_world(World<D>& world, const std::strin
 
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
-                                               const DomainCheckpoint<D>* resumed, bool local) {
-  return decompose_world(world, s.file, resumed, local);
+                                               const DomainCheckpoint<D>* resumed, bool local,
+                                               int rebalance_every) {
+  return decompose_world(world, s.file, resumed, local, rebalance_every);
 }
 
 namespace {
@@ -129,13 +133,13 @@ std::vector<typename Dim<D>::Vec> domain_positions_by_id(const World<D>& world,
 }
 
 template std::shared_ptr<SlabDomain<2>> decompose_world<2>(World<2>&, const std::string&,
-                                                           const DomainCheckpoint<2>*, bool);
+                                                           const DomainCheckpoint<2>*, bool, int);
 template std::shared_ptr<SlabDomain<3>> decompose_world<3>(World<3>&, const std::string&,
-                                                           const DomainCheckpoint<3>*, bool);
+                                                           const DomainCheckpoint<3>*, bool, int);
 template std::shared_ptr<SlabDomain<2>> decompose_scene<2>(const SceneSettings&, World<2>&,
-                                                           const DomainCheckpoint<2>*, bool);
+                                                           const DomainCheckpoint<2>*, bool, int);
 template std::shared_ptr<SlabDomain<3>> decompose_scene<3>(const SceneSettings&, World<3>&,
-                                                           const DomainCheckpoint<3>*, bool);
+                                                           const DomainCheckpoint<3>*, bool, int);
 template Particles<2> grains_on_rank0<2>(const World<2>&, SlabDomain<2>&);
 template Particles<3> grains_on_rank0<3>(const World<3>&, SlabDomain<3>&);
 template class DomainWorldOnRank0<2>;

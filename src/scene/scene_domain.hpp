@@ -16,15 +16,17 @@ namespace geodem {
 // Decomposes the world over the ranks of MPI_COMM_WORLD (`resumed`: a world loaded from a
 // decomposed run's checkpoint, SlabDomain::distribute); throws InputError for slabs thinner
 // than the ghost width.
-// With `local`: a domain of one rank in this process, without MPI.
+// With `local`: a domain of one rank in this process, without MPI. `rebalance_every`:
+// SlabDomain::rebalance_every (RunOptions, --rebalance).
 // The same for any world (a lab test's sample); an InputError names `file` and "mpirun -n".
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_world(World<D>& world, const std::string& file,
-                                               const DomainCheckpoint<D>* resumed, bool local);
+                                               const DomainCheckpoint<D>* resumed, bool local,
+                                               int rebalance_every);
 template <int D>
 std::shared_ptr<SlabDomain<D>> decompose_scene(const SceneSettings& s, World<D>& world,
-                                               const DomainCheckpoint<D>* resumed = nullptr,
-                                               bool local = false);
+                                               const DomainCheckpoint<D>* resumed, bool local,
+                                               int rebalance_every);
 
 // For a checkpoint of a decomposed run (all ranks make one): while it lives, rank 0's world
 // holds the whole domain's grains in key order, its clumps in id order, an empty neighbour list

@@ -49,6 +49,8 @@ class DomainHooks {
   virtual void grains_kept(World<D>& world, const std::vector<std::uint32_t>& keep) = 0;
   // After integration: the ghosts take their owners' new positions and velocities.
   virtual void after_integration(World<D>& world) = 0;
+  // How many times the ranks' regions were moved to even their work (the summary's timing).
+  virtual std::uint64_t region_moves() const { return 0; }
 };
 
 }  // namespace geodem

@@ -7,7 +7,8 @@ its loads summed over the ranks), layers added by a stage (discs and clumps plac
 whole domain's grains, each rank keeping its own) and the staged example (a wall removed, grains
 excavated, a servo-loaded plate) on 1, 2 and 4 ranks (oversubscribed; the 2 ranks with 2
 threads each) write the same history.csv (every column but the wall-clock time), the same
-particles.csv and the same results in summary.json. Killed (SIGTERM, or SIGKILL after periodic
+particles.csv and the same results in summary.json, the 4 ranks with their cuts moved to even
+their work (`--rebalance 1`: they move in the layers' run and others). Killed (SIGTERM, or SIGKILL after periodic
 checkpoints) and resumed on another number of ranks, or by one process without mpirun, they
 write the history and grains of the uninterrupted run. An instability on one rank stops every
 rank with one diagnosis.
@@ -123,20 +124,22 @@ def main() -> int:
         return 77
     mpirun, env = launch
 
-    def run(ranks, scenario, out, *sets, threads=1):
+    def run(ranks, scenario, out, *sets, threads=1, extra=()):
         args = [mpirun, "-n", str(ranks), geodem, "run", os.path.join(HERE, scenario), "--out",
-                out, "--quiet", "--threads", str(threads)]
+                out, "--quiet", "--threads", str(threads), *extra]
         for s in sets:
             args += ["--set", s]
         return subprocess.run(args, env=env, text=True, capture_output=True, timeout=600)
 
     with tempfile.TemporaryDirectory() as tmp:
+        moves = {}  # the cuts' moves of the 4-rank runs, which weigh their work at every build
         for scenario in ("settle3d.toml", "biaxial2d.toml", "pullout2d.toml", "layers2d.toml",
                          STAGED):
             ref = None
             for ranks in (1, 2, 4):
                 out = os.path.join(tmp, f"{os.path.basename(scenario)}.{ranks}")
-                r = run(ranks, scenario, out, "output.plots=false", threads=2 if ranks == 2 else 1)
+                r = run(ranks, scenario, out, "output.plots=false", threads=2 if ranks == 2 else 1,
+                        extra=["--rebalance", "1"] if ranks == 4 else [])
                 if r.returncode != 0:
                     check(False, f"{scenario} on {ranks} ranks ran: {r.stdout}{r.stderr}")
                     continue
@@ -186,12 +189,22 @@ def main() -> int:
                           res["clumps"] == 100 and res["particles"] == 760,
                           f"{scenario} on {ranks} ranks: {res['bonds_broken']} of "
                           f"{res['bonds_created']} bonds broke, {res['clumps']} clumps")
+                if ranks == 4:
+                    timing = json.load(open(os.path.join(out, "summary.json")))["timing"]
+                    moves[scenario] = timing["rebalance_moves"]
+                    check(timing["ranks"] == 4, f"{scenario}: the summary names 4 ranks")
                 if ref is None:
                     ref = got
                     continue
                 for part in got:
                     check(got[part] == ref[part],
                           f"{scenario}: {part} on {ranks} ranks the same as on 1 rank")
+
+        # A layer added on top leaves the ranks' work uneven, and so does settling: the cuts
+        # moved (the modelled work decides, so the same runs move them alike each time), and
+        # the results above are those of 1 rank all the same.
+        check(moves.get("layers2d.toml", 0) > 0 and sum(m > 0 for m in moves.values()) >= 3,
+              f"the cuts of the 4-rank runs moved (work weighed at every build): {moves}")
 
         # An instability on one rank stops all of them, with one diagnosis from rank 0.
         out = os.path.join(tmp, "unstable")
