@@ -1,4 +1,4 @@
-// The cuts of a decomposed domain moved to balance the ranks' measured work
+// The cuts of a decomposed domain moved to balance the ranks' work, modelled or measured
 // (domain/slab_domain.hpp): results do not depend on where the cuts are.
 #include <algorithm>
 #include <cmath>
@@ -10,16 +10,11 @@
 
 namespace geodem {
 
-// Each grain's work (modelled from its contacts, or measured), binned along x and gathered;
-// every rank then sees the same bins. The cuts move only
-// when the work was uneven in `rebalance_persistence` windows in a row (a hiccup of the machine
-// in one window moves nothing), and then `rebalance_damping` of the way to equal shares
-// (balanced_cuts). The next build migrates the grains.
 // A grain's work in the model: 1 for its integration and search, and kPairWork for each
-// contact pair, wall pair or spar-element pair its rank computes for it (a pair of two owned grains
-// half to each, a pair with a ghost wholly to the owned grain). kPairWork from B2's settled bed on
-// one process: the force stage 64 % of a step, the integration and search 36 %, at 3.5 listed pairs
-// a grain (1.77 / 3.5 = 0.5).
+// contact pair, wall pair or spar-element pair its rank computes for it (a pair of two owned
+// grains half to each, a pair with a ghost wholly to the owned grain). kPairWork from B2's
+// settled bed on one process: the force stage 64 % of a step, the integration and search
+// 36 %, at 3.5 listed pairs a grain (1.77 / 3.5 = 0.5).
 constexpr double kPairWork = 0.5;
 
 template <int D>
@@ -57,6 +52,10 @@ std::vector<double> SlabDomain<D>::measured_work(const World<D>& world) {
                              mine > 0 ? spent / static_cast<double>(mine) : 0.0);
 }
 
+// Each grain's work (modelled from its contacts, or measured), binned along x and gathered;
+// every rank then sees the same bins. The cuts move when the work was uneven in
+// `rebalance_persistence` windows in a row, `rebalance_damping` of the way to equal shares
+// (balanced_cuts). The next build migrates the grains.
 template <int D>
 void SlabDomain<D>::rebalance(const World<D>& world) {
   const auto& P = world.particles;
