@@ -26,11 +26,15 @@ std::vector<double> balanced_cuts(const std::vector<double>& work, const std::ve
   return cuts;
 }
 
+double busiest_share(const std::vector<double>& rank_work) {
+  double sum = 0.0, busiest = 0.0;
+  for (double w : rank_work) sum += w, busiest = std::max(busiest, w);
+  if (!(sum > 0.0)) return 0.0;
+  return busiest * static_cast<double>(rank_work.size()) / sum;
+}
+
 bool imbalanced(const std::vector<double>& rank_work, double tolerance) {
-  double sum = 0.0, slowest = 0.0;
-  for (double w : rank_work) sum += w, slowest = std::max(slowest, w);
-  if (!(sum > 0.0) || rank_work.empty()) return false;
-  return slowest > (1.0 + tolerance) * sum / static_cast<double>(rank_work.size());
+  return busiest_share(rank_work) > 1.0 + tolerance;
 }
 
 }  // namespace geodem

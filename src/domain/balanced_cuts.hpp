@@ -16,6 +16,9 @@ namespace geodem {
 std::vector<double> balanced_cuts(const std::vector<double>& work, const std::vector<double>& old,
                                   double x0, double span, double thinnest, double damping);
 
+// The busiest rank's work over an even share of the total (1: balanced; 0 without work).
+double busiest_share(const std::vector<double>& rank_work);
+
 // Whether a rank is slower than an even share of the work by more than `tolerance`, from each
 // rank's work (a rank's share of the total, not its time alone, decides).
 bool imbalanced(const std::vector<double>& rank_work, double tolerance);

@@ -233,40 +233,43 @@ std::size_t SlabDomain<D>::owned(const World<D>& world) const {
 }
 
 namespace {
-// Adds the wall time of a scope to a total, and the calling thread's CPU time to another.
+// Adds the wall time of a scope to a total, and with `cpu` the calling thread's CPU time to
+// another (a system call each way: taken only when the rebalance measures time).
 class Timed {
  public:
-  Timed(double& wall, double& cpu) : wall_(wall), cpu_(cpu) {}
+  Timed(double& wall, double* cpu)
+      : wall_(wall), cpu_(cpu), cpu0_(cpu ? thread_cpu_seconds() : 0.0) {}
   ~Timed() {
     wall_ += std::chrono::duration<double>(Clock::now() - t0_).count();
-    cpu_ += thread_cpu_seconds() - cpu0_;
+    if (cpu_) *cpu_ += thread_cpu_seconds() - cpu0_;
   }
   Timed(const Timed&) = delete;
   Timed& operator=(const Timed&) = delete;
 
  private:
   using Clock = std::chrono::steady_clock;
-  double &wall_, &cpu_;
+  double& wall_;
+  double* cpu_;
+  double cpu0_;
   Clock::time_point t0_ = Clock::now();
-  double cpu0_ = thread_cpu_seconds();
 };
 }  // namespace
 
 template <int D>
 bool SlabDomain<D>::any_rank(bool here) {
-  Timed t(comm_seconds_, comm_cpu_seconds_);
+  Timed t(comm_seconds_, rebalance_on_time ? &comm_cpu_seconds_ : nullptr);
   return comm_->max(here ? 1.0 : 0.0) > 0.5;
 }
 
 template <int D>
 double SlabDomain<D>::min_over_ranks(double here) {
-  Timed t(comm_seconds_, comm_cpu_seconds_);
+  Timed t(comm_seconds_, rebalance_on_time ? &comm_cpu_seconds_ : nullptr);
   return comm_->min(here);
 }
 
 template <int D>
 std::string SlabDomain<D>::first_text(const std::string& here) {
-  Timed t(comm_seconds_, comm_cpu_seconds_);
+  Timed t(comm_seconds_, rebalance_on_time ? &comm_cpu_seconds_ : nullptr);
   // Each rank's text with its length in front, in rank order.
   const std::uint64_t n = here.size();
   Bytes framed(sizeof n + here.size());
@@ -287,13 +290,13 @@ std::string SlabDomain<D>::first_text(const std::string& here) {
 template <int D>
 void SlabDomain<D>::exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower,
                              Bytes& from_upper) {
-  Timed t(comm_seconds_, comm_cpu_seconds_);
+  Timed t(comm_seconds_, rebalance_on_time ? &comm_cpu_seconds_ : nullptr);
   comm_->exchange(to_lower, to_upper, from_lower, from_upper);
 }
 
 template <int D>
 void SlabDomain<D>::sum(std::vector<ExactSum>& sums) {
-  Timed t(comm_seconds_, comm_cpu_seconds_);
+  Timed t(comm_seconds_, rebalance_on_time ? &comm_cpu_seconds_ : nullptr);
   comm_->sum(sums);
 }
 

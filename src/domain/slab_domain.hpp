@@ -121,7 +121,7 @@ class SlabDomain final : public DomainHooks<D> {
   std::vector<double> modelled_work(const World<D>& world) const;
   std::vector<double> measured_work(const World<D>& world);
   // comm_->exchange, its time (waiting included) counted in comm_seconds_ (wall) and
-  // comm_cpu_seconds_ (the thread's CPU).
+  // comm_cpu_seconds_ (the thread's CPU, taken with rebalance_on_time only).
   void exchange(const Bytes& to_lower, const Bytes& to_upper, Bytes& from_lower, Bytes& from_upper);
   std::uint64_t cell_key(const typename Dim<D>::Vec& x, std::uint32_t id) const;
   // The keys' grid over the box [lo, hi] of the domain's `grains`, and the block of keys of a

@@ -82,9 +82,7 @@ void SlabDomain<D>::rebalance(const World<D>& world) {
       rank_work[static_cast<std::size_t>(r)] += v;
     }
   }
-  double sum = 0.0, busiest = 0.0;
-  for (double w : rank_work) sum += w, busiest = std::max(busiest, w);
-  if (sum > 0.0) work_imbalance_ = busiest * static_cast<double>(ranks) / sum;
+  if (const double share = busiest_share(rank_work); share > 0.0) work_imbalance_ = share;
   // Near an even share the cuts stay: moving them for little costs migrations.
   uneven_windows_ = imbalanced(rank_work, rebalance_tolerance) ? uneven_windows_ + 1 : 0;
   if (uneven_windows_ < std::max(rebalance_persistence, 1)) return;

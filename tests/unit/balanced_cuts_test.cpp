@@ -97,6 +97,9 @@ TEST(BalancedCuts, ImbalanceAgainstAnEvenShare) {
   EXPECT_TRUE(imbalanced({1.0, 1.0, 1.4}, 0.1));  // 1.4 against 1.133
   EXPECT_FALSE(imbalanced({0.0, 0.0}, 0.05));
   EXPECT_FALSE(imbalanced({}, 0.05));
+  EXPECT_NEAR(busiest_share({1.0, 1.2}), 2.4 / 2.2, 1e-15);
+  EXPECT_NEAR(busiest_share({2.0, 2.0, 2.0}), 1.0, 1e-15);
+  EXPECT_EQ(busiest_share({0.0, 0.0}), 0.0);
 }
 
 }  // namespace
