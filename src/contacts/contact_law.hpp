@@ -167,7 +167,9 @@ template <int D>
   } else {
     const double ft2 = ft.squaredNorm();
     if (ft2 <= limit * limit) return false;
-    ft *= limit / std::sqrt(ft2);
+    // A frictionless contact (a lab box's smooth walls) skips the square root and division
+    // (limit / |ft| is +0 then: the same bits).
+    ft *= limit > 0.0 ? limit / std::sqrt(ft2) : 0.0;
   }
   return true;
 }
