@@ -105,5 +105,27 @@ TEST(TangentSpring2D, SameFromEitherBody) {
   EXPECT_EQ(spring_from_other_body<3>(s3), Eigen::Vector3d(-s3));
 }
 
+// Coulomb's limit of a frictionless contact: the spring becomes zero with the signs that
+// scaling by 0 / |ft| gave (the short path skips that square root and division).
+TEST(CoulombLimit, FrictionlessSpringScaledByZero) {
+  Eigen::Vector3d ft(-3.0e-4, 2.0e-4, 0.0);
+  const Eigen::Vector3d before = ft;
+  ASSERT_TRUE(limit_to<3>(ft, 0.0));
+  const Eigen::Vector3d scaled = before * (0.0 / std::sqrt(before.squaredNorm()));
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(ft[a], 0.0);
+    EXPECT_EQ(std::signbit(ft[a]), std::signbit(scaled[a])) << a;
+  }
+  // With friction: scaled to the limit exactly as before.
+  Eigen::Vector3d g(3.0, 4.0, 0.0);
+  ASSERT_TRUE(limit_to<3>(g, 2.5));
+  EXPECT_DOUBLE_EQ(g.norm(), 2.5);
+  EXPECT_EQ(g[0], 3.0 * (2.5 / 5.0));
+  // Under the limit: untouched.
+  Eigen::Vector3d h(0.1, 0.0, 0.0);
+  EXPECT_FALSE(limit_to<3>(h, 0.2));
+  EXPECT_EQ(h[0], 0.1);
+}
+
 }  // namespace
 }  // namespace geodem::test
