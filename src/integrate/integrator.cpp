@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "base/parallel.hpp"
 #include "clumps/clump_dynamics.hpp"
+#include "contacts/contact_batch.hpp"
+#include "integrate/move_kernel.hpp"
 #include "structures/spar_dynamics.hpp"
 
 namespace geodem {
@@ -22,55 +25,137 @@ inline void damp(V& a, const V& v_half, double alpha, double dt) {
   for (int k = 0; k < a.size(); ++k) damp(a[k], v_half[k], alpha, dt);
 }
 
+// The grains' arrays as one step's move reads and writes them. Raw pointers: the compiler then
+// knows the arrays do not move inside the loop.
+template <int D>
+struct GrainArrays {
+  typename Dim<D>::Vec* __restrict pos;
+  typename Dim<D>::Vec* __restrict vel;
+  typename Dim<D>::Rot* __restrict angvel;
+  const typename Dim<D>::Vec* __restrict force;
+  const typename Dim<D>::Rot* __restrict torque;
+  const double* __restrict inv_mass;
+  const double* __restrict inv_inertia;
+  const std::uint8_t* __restrict flags;
+  typename Dim<D>::Orient* __restrict orient;
+};
+
+// Moves every grain by one step; returns the largest speed squared (exact in any order). The
+// options are template parameters so that the loop over the grains carries no test of them
+// and its body is inlined (a call per grain cost a tenth of a small lab test's step).
+template <int D, bool Damped, bool Periodic, bool Track>
+double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t first) {
+  using Vec = typename Dim<D>::Vec;
+  using Rot = typename Dim<D>::Rot;
+  const std::size_t n = world.particles.size();
+  const double dt = world.dt, alpha = world.local_damping;
+  const Vec g = world.gravity;
+  // In a periodic cell, velocities are relative to the cell's affine field L x.
+  const typename Dim<D>::Tensor L = world.cell.vel_grad;
+  auto move = [&A, dt, alpha, g, &L](std::ptrdiff_t i) [[gnu::always_inline]] {
+    // Moved with its clump below, or a ghost (its owner moves it).
+    if (A.flags[i] & (kClumpMember | kGhost)) return 0.0;
+    if (!(A.flags[i] & kFixed)) {
+      Vec a = A.force[i] * A.inv_mass[i] + g;
+      Rot aw = A.torque[i] * A.inv_inertia[i];
+      if constexpr (Damped) {
+        damp(a, A.vel[i], alpha, dt);
+        damp(aw, A.angvel[i], alpha, dt);
+      }
+      A.vel[i] += a * dt;
+      A.angvel[i] += aw * dt;
+    }
+    if constexpr (Periodic) {
+      A.pos[i] += (A.vel[i] + L * A.pos[i]) * dt;
+    } else {
+      A.pos[i] += A.vel[i] * dt;
+    }
+    if constexpr (Track) Dim<D>::rotate(A.orient[i], A.angvel[i], dt);
+    return A.vel[i].squaredNorm();
+  };
+  return extreme_over_indices<true>(
+      static_cast<std::ptrdiff_t>(n - first), world.threads, n - first >= kParallelMin, 0.0,
+      [&](std::ptrdiff_t i) { return move(static_cast<std::ptrdiff_t>(first) + i); });
+}
+
+template <int D, bool Damped, bool Periodic>
+double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t first) {
+  return world.track_orientation ? move_grains<D, Damped, Periodic, true>(world, A, first)
+                                 : move_grains<D, Damped, Periodic, false>(world, A, first);
+}
+
+template <int D, bool Damped>
+double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t first) {
+  return world.cell.periodic ? move_grains<D, Damped, true>(world, A, first)
+                             : move_grains<D, Damped, false>(world, A, first);
+}
+
+// An array of vectors (Eigen's fixed sizes hold no padding) or of doubles as its doubles.
+template <typename T>
+auto* flat(T* p) {
+  if constexpr (std::is_arithmetic_v<T>) {
+    return p;
+  } else {
+    static_assert(sizeof(T) == T::SizeAtCompileTime * sizeof(double));
+    return p->data();
+  }
+}
+
+// The whole blocks of grains by the move kernel of the step's instruction set
+// (integrate/move_kernel.hpp) where it applies; returns how many grains it moved (the rest
+// go through the scalar loop) and the largest speed squared among them.
+template <int D>
+std::size_t move_blocks(const World<D>& world, const GrainArrays<D>& A, double& vmax2) {
+  vmax2 = 0.0;
+#if defined(__x86_64__) && defined(__GNUC__)
+  const ContactPath path = contact_path();
+  if (world.cell.periodic || world.track_orientation ||
+      (path != ContactPath::kAvx2 && path != ContactPath::kAvx512))
+    return 0;
+  MoveConstants c;
+  c.dt = world.dt;
+  c.alpha = world.local_damping;
+  for (int k = 0; k < D; ++k) c.gravity[k] = world.gravity[k];
+  c.left_alone = kClumpMember | kGhost;
+  c.fixed = kFixed;
+  const MoveArrays m{flat(A.pos),    flat(A.vel), flat(A.angvel), flat(A.force),
+                     flat(A.torque), A.inv_mass,  A.inv_inertia,  A.flags};
+  const std::size_t n = world.particles.size(), whole = n - n % kMoveBlock;
+  // Chunks of whole blocks, one term of the maximum each (threads share them).
+  constexpr std::size_t kChunk = 64 * kMoveBlock;
+  const std::size_t chunks = (whole + kChunk - 1) / kChunk;
+  vmax2 = extreme_over_indices<true>(
+      static_cast<std::ptrdiff_t>(chunks), world.threads, n >= kParallelMin, 0.0,
+      [&](std::ptrdiff_t k) {
+        const std::size_t first = static_cast<std::size_t>(k) * kChunk;
+        const std::size_t last = std::min(whole, first + kChunk);
+        return path == ContactPath::kAvx512 ? move_kernel_avx512<D>(c, m, first, last)
+                                            : move_kernel_avx2<D>(c, m, first, last);
+      });
+  return whole;
+#else
+  (void)world, (void)A;
+  return 0;
+#endif
+}
+
 }  // namespace
 
 template <int D>
 void integrate(World<D>& world) {
-  using Vec = typename Dim<D>::Vec;
-  using Rot = typename Dim<D>::Rot;
   auto& P = world.particles;
   const std::size_t n = P.size();
-  const double dt = world.dt, alpha = world.local_damping;
-  const Vec g = world.gravity;
-  // Raw pointers: the compiler then knows the arrays do not move inside the loop.
-  Vec* __restrict pos = P.pos.data();
-  Vec* __restrict vel = P.vel.data();
-  Rot* __restrict angvel = P.angvel.data();
-  const Vec* __restrict force = P.force.data();
-  const Rot* __restrict torque = P.torque.data();
-  const double* __restrict inv_mass = P.inv_mass.data();
-  const double* __restrict inv_inertia = P.inv_inertia.data();
-  const std::uint8_t* __restrict flags = P.flags.data();
+  const double dt = world.dt;
   if (world.track_orientation && P.orient.size() != n) P.orient.resize(n, Dim<D>::identity());
-  auto* __restrict orient = P.orient.data();
-  const bool track = world.track_orientation;
-  // In a periodic cell, velocities are relative to the cell's affine field L x.
+  const GrainArrays<D> arrays{P.pos.data(),         P.vel.data(),    P.angvel.data(),
+                              P.force.data(),       P.torque.data(), P.inv_mass.data(),
+                              P.inv_inertia.data(), P.flags.data(),  P.orient.data()};
   const bool periodic = world.cell.periodic;
   const typename Dim<D>::Tensor L = world.cell.vel_grad;
-  // Moves grain i; returns its speed squared (a maximum over grains: the same in any order).
-  auto move = [&](std::ptrdiff_t i) {
-    // Moved with its clump below, or a ghost (its owner moves it).
-    if (flags[i] & (kClumpMember | kGhost)) return 0.0;
-    if (!(flags[i] & kFixed)) {
-      Vec a = force[i] * inv_mass[i] + g;
-      Rot aw = torque[i] * inv_inertia[i];
-      if (alpha > 0.0) {
-        damp(a, vel[i], alpha, dt);
-        damp(aw, angvel[i], alpha, dt);
-      }
-      vel[i] += a * dt;
-      angvel[i] += aw * dt;
-    }
-    if (periodic) {
-      pos[i] += (vel[i] + L * pos[i]) * dt;
-    } else {
-      pos[i] += vel[i] * dt;
-    }
-    if (track) Dim<D>::rotate(orient[i], angvel[i], dt);
-    return vel[i].squaredNorm();
-  };
-  double vmax2 = extreme_over_indices<true>(static_cast<std::ptrdiff_t>(n), world.threads,
-                                            n >= kParallelMin, 0.0, move);
+  double vmax2 = 0.0;
+  const std::size_t first = move_blocks(world, arrays, vmax2);
+  vmax2 = std::max(vmax2, world.local_damping > 0.0 ? move_grains<D, true>(world, arrays, first)
+                                                    : move_grains<D, false>(world, arrays, first));
   vmax2 = std::max(vmax2, integrate_clumps(world));
   // Bound on how far any grain moved since the neighbour list was checked (spar nodes
   // are checked exactly, like walls: they are few).
