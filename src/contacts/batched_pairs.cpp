@@ -37,19 +37,6 @@ double* doubles(std::vector<T>& v) {
   }
 }
 
-// The spring's own bits where keep is all ones, +0 where it is zero.
-template <int D>
-inline void keep_or_clear(TangentSpring<D>& s, std::uint64_t keep) {
-  double* p = nullptr;
-  if constexpr (D == 2) {
-    p = &s;
-  } else {
-    p = s.data();
-  }
-  for (int a = 0; a < (D == 2 ? 1 : D); ++a)
-    p[a] = std::bit_cast<double>(std::bit_cast<std::uint64_t>(p[a]) & keep);
-}
-
 BatchLaw batch_law_of(const PairLaw& p) {
   return {p.law == LawKind::kHertz,
           p.constant_stiffness,
@@ -216,7 +203,7 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
       // Apart: the history ends where there is one. The spring is written back either way,
       // its own bits or +0 through a mask, so that nothing waits on a guess of `apart`.
       const bool ends = apart & (spring_norm2<D>(spring[k]) != 0.0);
-      keep_or_clear<D>(spring[k], std::uint64_t{0} - static_cast<std::uint64_t>(!ends));
+      keep_or_clear_spring<D>(spring[k], std::uint64_t{0} - static_cast<std::uint64_t>(!ends));
       const PairLaw* pair_law = one_material ? laws : laws + material[j];
       if (!apart & (pair_law != law)) [[unlikely]] {
         if (n > 0) add_batch();

@@ -21,6 +21,7 @@
 #include "contacts/batched_pairs.hpp"
 #include "contacts/contact_batch.hpp"
 #include "contacts/contact_law.hpp"
+#include "contacts/plane_walls.hpp"
 #include "contacts/slab_tally.hpp"
 
 namespace geodem {
@@ -340,8 +341,16 @@ void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
     }
   };
   SlabTally<D>* tally = tallies.data();
+  // A lab box's walls in two passes (contacts/plane_walls.cpp) unless the scalar loop is asked
+  // for; the measured steps and the contacts with extras keep this loop.
+  const bool planes =
+      !Measure && !Extras && contact_path() != ContactPath::kScalar && plane_walls_only(world);
   for_slabs(world.slab_plan(world.particles.size()), world.threads,
             [&](std::size_t s, std::size_t first, std::size_t last) {
+              if (planes) {
+                plane_wall_rows(world, first, last, tally[s]);
+                return;
+              }
               for (std::size_t i = first; i < last; ++i) row(i, tally[s]);
             });
 }

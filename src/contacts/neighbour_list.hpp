@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <type_traits>
 #include <vector>
@@ -31,6 +32,21 @@ TangentSpring<D> unloaded_spring() {
   } else {
     return Dim<D>::Vec::Zero();
   }
+}
+
+// The spring's own bits where keep is all ones, +0 where it is zero (a pair that parted ends its
+// history without a branch on whether it did, which would mispredict as often as the touch
+// test itself).
+template <int D>
+inline void keep_or_clear_spring(TangentSpring<D>& s, std::uint64_t keep) {
+  double* p = nullptr;
+  if constexpr (D == 2) {
+    p = &s;
+  } else {
+    p = s.data();
+  }
+  for (int a = 0; a < (D == 2 ? 1 : D); ++a)
+    p[a] = std::bit_cast<double>(std::bit_cast<std::uint64_t>(p[a]) & keep);
 }
 
 template <int D>
