@@ -40,9 +40,9 @@ struct GrainArrays {
   typename Dim<D>::Orient* __restrict orient;
 };
 
-// Moves every grain by one step; returns the largest speed squared (exact in any order). The
-// options are template parameters so that the loop over the grains carries no test of them
-// and its body is inlined (a call per grain cost a tenth of a small lab test's step).
+// Moves the grains from `first` on by one step; returns the largest speed squared (exact in any
+// order). The options are template parameters so that the loop over the grains carries no test
+// of them.
 template <int D, bool Damped, bool Periodic, bool Track>
 double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t first) {
   using Vec = typename Dim<D>::Vec;
