@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 
 #include "integrate/move_kernel.hpp"
@@ -25,6 +26,16 @@ template <class A, int D, std::size_t... E>
 inline void spread(const xsimd::batch<double, A>& one, xsimd::batch<double, A>* out,
                    std::index_sequence<E...>) {
   using U = xsimd::batch<std::uint64_t, A>;
+#if defined(__AVX512F__)
+  if constexpr (std::is_same_v<A, xsimd::avx512f>) {
+    // The permutation with every lane selected: xsimd's swizzle starts from an undefined vector,
+    // which GCC 12 reports as used uninitialized at -O1 (a false alarm in its own header).
+    ((out[E] = _mm512_mask_permutexvar_pd(
+          one, 0xFF, U(xsimd::make_batch_constant<U, GrainOfComponent<E, D>>()), one)),
+     ...);
+    return;
+  }
+#endif
   ((out[E] = xsimd::swizzle(one, xsimd::make_batch_constant<U, GrainOfComponent<E, D>>())), ...);
 }
 
