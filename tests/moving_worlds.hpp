@@ -11,9 +11,15 @@
 #include <vector>
 
 #include "clumps/clump_template.hpp"
+#include "contacts/contact_batch.hpp"
 #include "test_util.hpp"
 
 namespace geodem::test {
+
+// Puts the step back on its default contact path when a test that chose one ends.
+struct ContactPathGuard {
+  ~ContactPathGuard() { set_contact_path(default_contact_path()); }
+};
 
 // Whether two arrays hold the same bytes.
 template <typename T>

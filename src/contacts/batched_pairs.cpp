@@ -12,7 +12,6 @@
 #include "contacts/batched_pairs.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <type_traits>

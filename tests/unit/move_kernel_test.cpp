@@ -10,6 +10,7 @@
 
 #include "contacts/contact_batch.hpp"
 #include "integrate/integrator.hpp"
+#include "moving_worlds.hpp"
 #include "particles/particles.hpp"
 #include "test_util.hpp"
 
@@ -19,10 +20,6 @@ namespace {
 template <typename T>
 class MoveKernel : public ::testing::Test {};
 TYPED_TEST_SUITE(MoveKernel, Dims, DimNames);
-
-struct PathGuard {
-  ~PathGuard() { set_contact_path(default_contact_path()); }
-};
 
 template <int D>
 World<D> random_grains(double damping, std::size_t n) {
@@ -77,14 +74,9 @@ void run_steps(World<D>& w) {
   }
 }
 
-template <typename T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
 TYPED_TEST(MoveKernel, EveryPathGivesTheScalarLoopsBits) {
   constexpr int D = TypeParam::value;
-  PathGuard guard;
+  ContactPathGuard guard;
   int paths = 0;
   for (double damping : {0.0, 0.2}) {
     for (std::size_t n : {std::size_t{5}, std::size_t{8}, std::size_t{203}}) {
@@ -112,7 +104,7 @@ TYPED_TEST(MoveKernel, EveryPathGivesTheScalarLoopsBits) {
 // The moves themselves, on one grain: v += (F/m + g) dt, x += v dt (semi-implicit Euler).
 TYPED_TEST(MoveKernel, FreeGrainFollowsSemiImplicitEuler) {
   constexpr int D = TypeParam::value;
-  PathGuard guard;
+  ContactPathGuard guard;
   for (ContactPath p : {ContactPath::kScalar, ContactPath::kAvx2, ContactPath::kAvx512}) {
     if (!set_contact_path(p)) continue;
     World<D> w = random_grains<D>(0.0, 16);

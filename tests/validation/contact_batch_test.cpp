@@ -33,11 +33,6 @@ template <typename T>
 class ContactBatches : public ::testing::Test {};
 TYPED_TEST_SUITE(ContactBatches, Dims, DimNames);
 
-// Puts the step back on its default path when a test ends.
-struct PathGuard {
-  ~PathGuard() { set_contact_path(default_contact_path()); }
-};
-
 enum class Case { kLinear, kTangentialDashpot, kTwoMaterials, kHertz, kClumps, kPeriodic };
 
 const char* case_name(Case c) {
@@ -140,7 +135,7 @@ void expect_identical(const World<D>& a, const World<D>& b) {
 
 TYPED_TEST(ContactBatches, EveryPathGivesTheScalarLoopsBits) {
   constexpr int D = TypeParam::value;
-  PathGuard guard;
+  ContactPathGuard guard;
   int compared = 0;
   for (Case c : {Case::kLinear, Case::kTangentialDashpot, Case::kTwoMaterials, Case::kHertz,
                  Case::kClumps, Case::kPeriodic}) {
@@ -254,7 +249,7 @@ void expect_kernel_matches_law(const PairLaw& law, ContactPath path, std::mt1993
 
 TYPED_TEST(ContactBatches, KernelsGiveTheScalarLawsBitsOnRandomContacts) {
   constexpr int D = TypeParam::value;
-  PathGuard guard;
+  ContactPathGuard guard;
   std::mt19937_64 rng(17);
   std::vector<Material> materials;
   materials.push_back(linear_material(1e4, 5e3, 0.4, 0.5));
@@ -284,7 +279,7 @@ TYPED_TEST(ContactBatches, KernelsGiveTheScalarLawsBitsOnRandomContacts) {
 // The overlap that stops a run is the first in list order beyond the limit, on every path.
 TYPED_TEST(ContactBatches, EveryPathNotesTheSameRunawayOverlap) {
   constexpr int D = TypeParam::value;
-  PathGuard guard;
+  ContactPathGuard guard;
   auto noted = [](ContactPath p) {
     EXPECT_TRUE(set_contact_path(p));
     World<D> w;
@@ -314,7 +309,7 @@ TYPED_TEST(ContactBatches, EveryPathNotesTheSameRunawayOverlap) {
 }
 
 TEST(ContactPaths, ScalarAlwaysRunsAndAnUnsupportedPathIsRefused) {
-  PathGuard guard;
+  ContactPathGuard guard;
   EXPECT_TRUE(contact_path_supported(ContactPath::kScalar));
   EXPECT_TRUE(set_contact_path(ContactPath::kScalar));
   EXPECT_EQ(contact_path(), ContactPath::kScalar);
