@@ -8,7 +8,9 @@
 //           goes to the grains exactly as in the scalar loop (contacts/contact_forces.cpp),
 //           the row's own sum to grain i when the next row starts.
 // A batch holds one pair law (a change of law, as between materials, starts a new batch) and
-// may end inside a row: the row's sums carry over to the next batch.
+// may end inside a row: the row's sums carry over to the next batch. Where one law holds for
+// every pair, the gather pass runs in vector lanes (contacts/pair_gather.hpp) and keeps the
+// same pairs in the same order.
 #include "contacts/batched_pairs.hpp"
 
 #include <algorithm>
@@ -19,6 +21,7 @@
 
 #include "contacts/contact_batch.hpp"
 #include "contacts/contact_law.hpp"
+#include "contacts/pair_gather.hpp"
 
 namespace geodem {
 
@@ -68,9 +71,19 @@ bool batch_kernel_has(const std::vector<PairLaw>& laws) {
   });
 }
 
+template <int D>
+bool grains_of_one_material(const World<D>& world) {
+  const auto& m = world.particles.material;
+  return std::all_of(m.begin(), m.end(),
+                     [first = m.empty() ? 0 : m.front()](std::uint16_t x) { return x == first; });
+}
+
+template bool grains_of_one_material<2>(const World<2>&);
+template bool grains_of_one_material<3>(const World<3>&);
+
 template <int D, bool Measure, bool Periodic>
 void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D>& t,
-                       typename SlabCrossings<SlabCrossing<D>>::Writer crossing) {
+                       typename SlabCrossings<SlabCrossing<D>>::Writer crossing, bool one_law) {
   using Vec = typename Dim<D>::Vec;
   using Rot = typename Dim<D>::Rot;
   constexpr int kRot = ContactBatch<D>::kRot;
@@ -179,6 +192,23 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
     n = 0;
   };
 
+  if constexpr (!Periodic) {
+    const ContactPath path = contact_path();
+    if (one_law && share == nullptr && pair_gather_has(path) && start[first] < start[last]) {
+      const std::size_t m = material[first];
+      law = world.pair_laws.data() + m * nmat + m;
+      batch_law = batch_law_of(*law);
+      const PairGatherInput in{doubles(P.pos), radius, start, other, doubles(L.spring)};
+      PairWindow w(start, first, last);
+      while (w.next < w.end) {
+        n = gather_touching<D>(path, in, w, batch, n);
+        if (w.next < w.end) add_batch();  // the batch is full
+      }
+      if (n > 0) add_batch();
+      close_row();
+      return;
+    }
+  }
   const bool one_material = nmat == 1;
   for (std::size_t i = first; i < last; ++i) {
     const std::uint32_t b = start[i], e = start[i + 1];
@@ -232,7 +262,7 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
 
 #define GEODEM_BATCHED_PAIR_ROWS(D, M, P)                                                      \
   template void batched_pair_rows<D, M, P>(World<D>&, std::size_t, std::size_t, SlabTally<D>&, \
-                                           SlabCrossings<SlabCrossing<D>>::Writer);
+                                           SlabCrossings<SlabCrossing<D>>::Writer, bool);
 GEODEM_BATCHED_PAIR_ROWS(2, false, false)
 GEODEM_BATCHED_PAIR_ROWS(2, false, true)
 GEODEM_BATCHED_PAIR_ROWS(2, true, false)

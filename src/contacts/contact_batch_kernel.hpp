@@ -16,6 +16,7 @@
 #include <type_traits>
 
 #include "contacts/contact_batch.hpp"
+#include "contacts/triple_loads.hpp"
 
 namespace geodem::batch_kernel_detail {
 
@@ -97,12 +98,29 @@ inline void kernel(const BatchLaw& law, const BatchGrains& g, double dt, Contact
     const V ri = gather<A>(g.radius, ii), rj = gather<A>(g.radius, jj);
     V inv_msum = gather<A>(g.inv_mass, ii) + gather<A>(g.inv_mass, jj);
     if (g.shares) inv_msum = inv_msum * load(b.share + c);
+    // In 3D each grain's (or spring's) three components are loaded together and transposed
+    // (contacts/triple_loads.hpp); in 2D they are gathered.
+    auto parts = [&](const double* base, const std::int64_t* index, const I& scaled, V* out,
+                     int count) {
+      if constexpr (D == 3) {
+        if (count == 3) {
+          V three[3];
+          triple_detail::load_triples<A>(base, index, three);
+          for (int a = 0; a < 3; ++a) out[a] = three[a];
+          return;
+        }
+      }
+      for (int a = 0; a < count; ++a) out[a] = gather_part(base, scaled, a);
+    };
     V dv[D];
-    for (int a = 0; a < D; ++a) {
-      if constexpr (Periodic) {
-        dv[a] = load(b.d[a] + c);
-      } else {
-        dv[a] = gather_part(g.pos, jv, a) - gather_part(g.pos, iv, a);
+    if constexpr (Periodic) {
+      for (int a = 0; a < D; ++a) dv[a] = load(b.d[a] + c);
+    } else {
+      V pi[D], pj[D];
+      parts(g.pos, b.i + c, iv, pi, D);
+      parts(g.pos, b.j + c, jv, pj, D);
+      for (int a = 0; a < D; ++a) {
+        dv[a] = pj[a] - pi[a];
         dv[a].store_aligned(b.d[a] + c);
       }
     }
@@ -115,14 +133,10 @@ inline void kernel(const BatchLaw& law, const BatchGrains& g, double dt, Contact
     const V delta = (ri + rj) - dist;
     const V ai = ri - half * delta, aj = rj - half * delta;
     V vi[D], vj[D], wi[R], wj[R];
-    for (int a = 0; a < D; ++a) {
-      vi[a] = gather_part(g.vel, iv, a);
-      vj[a] = gather_part(g.vel, jv, a);
-    }
-    for (int a = 0; a < R; ++a) {
-      wi[a] = gather_part(g.angvel, ir, a);
-      wj[a] = gather_part(g.angvel, jr, a);
-    }
+    parts(g.vel, b.i + c, iv, vi, D);
+    parts(g.vel, b.j + c, jv, vj, D);
+    parts(g.angvel, b.i + c, ir, wi, R);
+    parts(g.angvel, b.j + c, jr, wj, R);
     // Relative velocity of the surfaces: (v_j - w_j x (aj n)) - (v_i + w_i x (ai n)).
     V vr[D];
     if constexpr (D == 3) {
@@ -164,8 +178,8 @@ inline void kernel(const BatchLaw& law, const BatchGrains& g, double dt, Contact
     const V kt_dt = kt * vdt;
     V f[D];
     if constexpr (D == 3) {
-      V s[3] = {gather_part(g.spring, ks, 0), gather_part(g.spring, ks, 1),
-                gather_part(g.spring, ks, 2)};
+      V s[3];
+      triple_detail::load_triples<A>(g.spring, b.k + c, s);
       // The spring turned into the new tangent plane (keep_in_tangent_plane).
       const V s2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
       const V sn = s[0] * nv[0] + s[1] * nv[1] + s[2] * nv[2];
@@ -193,7 +207,7 @@ inline void kernel(const BatchLaw& law, const BatchGrains& g, double dt, Contact
           s[a] = xsimd::select(slips, ft[a], s[a]);
         }
       }
-      store_springs<W>(s, g.spring, ks, 3, n - c);
+      triple_detail::store_triples<A>(g.spring, b.k + c, s, n - c);
       for (int a = 0; a < 3; ++a) f[a] = fn * nv[a] + ft[a];
       const V tq[3] = {nv[1] * f[2] - nv[2] * f[1], nv[2] * f[0] - nv[0] * f[2],
                        nv[0] * f[1] - nv[1] * f[0]};

@@ -1,0 +1,5 @@
+// The vector gather pass for AVX-512 (contacts/pair_gather_kernel.hpp); built with that set's
+// flags.
+#include "contacts/pair_gather_kernel.hpp"
+
+GEODEM_PAIR_GATHER(avx512, Avx512)
