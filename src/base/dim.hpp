@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 namespace geodem {
 
@@ -69,5 +70,17 @@ struct Dim<3> {
     q.coeffs() *= 1.5 - 0.5 * q.squaredNorm();
   }
 };
+
+// An array of D-vectors (Eigen's fixed sizes hold their coefficients and nothing else) or of
+// doubles, seen as its doubles (the vector kernels read the grains' arrays so).
+template <typename T>
+auto* as_doubles(T* p) {
+  if constexpr (std::is_arithmetic_v<std::remove_const_t<T>>) {
+    return p;
+  } else {
+    static_assert(sizeof(T) == T::SizeAtCompileTime * sizeof(double));
+    return p == nullptr ? nullptr : p->data();
+  }
+}
 
 }  // namespace geodem

@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <type_traits>
 #include <vector>
 
 #include "contacts/contact_batch.hpp"
@@ -26,18 +25,6 @@
 namespace geodem {
 
 namespace {
-
-// The doubles of an array of D-vectors (Eigen's fixed vectors hold their coefficients and
-// nothing else) or of plain doubles.
-template <typename T>
-double* doubles(std::vector<T>& v) {
-  if constexpr (std::is_same_v<T, double>) {
-    return v.data();
-  } else {
-    static_assert(sizeof(T) == T::SizeAtCompileTime * sizeof(double));
-    return v.empty() ? nullptr : v.front().data();
-  }
-}
 
 BatchLaw batch_law_of(const PairLaw& p) {
   return {p.law == LawKind::kHertz,
@@ -108,8 +95,13 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
   // pair 0, or an earlier contact.
   ContactBatch<D> batch{};
   batch.overlap_limit = overlap_limit;
-  const BatchGrains grains{doubles(P.pos),    doubles(P.vel),    doubles(P.angvel), radius,
-                           P.inv_mass.data(), doubles(L.spring), share != nullptr};
+  const BatchGrains grains{as_doubles(P.pos.data()),
+                           as_doubles(P.vel.data()),
+                           as_doubles(P.angvel.data()),
+                           radius,
+                           P.inv_mass.data(),
+                           as_doubles(L.spring.data()),
+                           share != nullptr};
   int n = 0;
   const PairLaw* law = nullptr;  // the batch's
   BatchLaw batch_law;
@@ -198,7 +190,8 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
       const std::size_t m = material[first];
       law = world.pair_laws.data() + m * nmat + m;
       batch_law = batch_law_of(*law);
-      const PairGatherInput in{doubles(P.pos), radius, start, other, doubles(L.spring)};
+      const PairGatherInput in{as_doubles(P.pos.data()), radius, start, other,
+                               as_doubles(L.spring.data())};
       PairWindow w(start, first, last);
       while (w.next < w.end) {
         n = gather_touching<D>(path, in, w, batch, n);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <type_traits>
 
 #include "base/parallel.hpp"
 #include "clumps/clump_dynamics.hpp"
@@ -90,17 +89,6 @@ double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t f
                              : move_grains<D, Damped, false>(world, A, first);
 }
 
-// An array of vectors (Eigen's fixed sizes hold no padding) or of doubles as its doubles.
-template <typename T>
-auto* flat(T* p) {
-  if constexpr (std::is_arithmetic_v<T>) {
-    return p;
-  } else {
-    static_assert(sizeof(T) == T::SizeAtCompileTime * sizeof(double));
-    return p->data();
-  }
-}
-
 // The whole blocks of grains by the move kernel of the step's instruction set
 // (integrate/move_kernel.hpp) where it applies; returns how many grains it moved (the rest
 // go through the scalar loop) and the largest speed squared among them.
@@ -118,8 +106,9 @@ std::size_t move_blocks(const World<D>& world, const GrainArrays<D>& A, double& 
   for (int k = 0; k < D; ++k) c.gravity[k] = world.gravity[k];
   c.left_alone = kClumpMember | kGhost;
   c.fixed = kFixed;
-  const MoveArrays m{flat(A.pos),    flat(A.vel), flat(A.angvel), flat(A.force),
-                     flat(A.torque), A.inv_mass,  A.inv_inertia,  A.flags};
+  const MoveArrays m{
+      as_doubles(A.pos),    as_doubles(A.vel), as_doubles(A.angvel), as_doubles(A.force),
+      as_doubles(A.torque), A.inv_mass,        A.inv_inertia,        A.flags};
   const std::size_t n = world.particles.size(), whole = n - n % kMoveBlock;
   // Chunks of whole blocks, one term of the maximum each (threads share them).
   constexpr std::size_t kChunk = 64 * kMoveBlock;
