@@ -238,7 +238,8 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   crossing.prepare(plan);
   // Contacts without extras run in batches unless the scalar loop is asked for.
   const bool batched = contact_path() != ContactPath::kScalar && batch_kernel_has(world.pair_laws);
-  const bool one_law = batched && !Extras && grains_of_one_material(world);
+  // (the vector gather pass runs outside a periodic cell only: no scan there)
+  const bool one_law = batched && !Extras && !Periodic && grains_of_one_material(world);
   for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
     if constexpr (!Extras) {
       if (batched) {
