@@ -51,52 +51,55 @@ bool zero_bits(const T& v) {
   return std::all_of(b, b + sizeof(T), [](unsigned char c) { return c == 0; });
 }
 
-// Keeps, of the old grain-grain rows, only the pairs that carry a history (a tangential
-// spring, moment springs or a bond): the merge gives every other pair an unloaded start,
-// the same bits the dropped entries held. During a build the old rows and the new ones are
-// both resident; the old ones then hold the touching pairs only, not every pair within the
-// skin.
+// Copies a list's rows into `old` before a build, keeping of the grain-grain rows only the
+// pairs that carry a history (a tangential spring, moment springs or a bond): the merge gives
+// every other pair an unloaded start, the same bits the dropped entries held. During a build
+// the old rows and the new ones are both resident; the old ones then hold the touching pairs
+// only, not every pair within the skin. `list` keeps its arrays: the build writes the new rows
+// over them, in memory already mapped. Periodic images are not carried (see
+// build_neighbour_list).
 template <int D>
-void keep_loaded_pairs(NeighbourList<D>& old, std::size_t n, int threads) {
-  if (old.start.size() != n + 1) return;
-  const bool extras = !old.extra.empty() && old.extra.size() == old.other.size();
+void keep_loaded_pairs(const NeighbourList<D>& list, NeighbourList<D>& old, std::size_t n,
+                       int threads) {
+  old.wall_start = list.wall_start, old.wall = list.wall, old.wall_spring = list.wall_spring;
+  old.wall_extra = list.wall_extra;
+  old.spar_start = list.spar_start, old.spar = list.spar, old.spar_spring = list.spar_spring;
+  old.image.clear();
+  old.start.clear(), old.other.clear(), old.spring.clear(), old.extra.clear();
+  if (list.start.size() != n + 1) return;  // no rows of these grains: nothing to carry
+  const bool extras = !list.extra.empty() && list.extra.size() == list.other.size();
   auto loaded = [&](std::size_t k) {
-    if (!zero_bits(old.spring[k])) return true;
+    if (!zero_bits(list.spring[k])) return true;
     if (!extras) return false;
-    const auto& e = old.extra[k];
+    const auto& e = list.extra[k];
     return e.bonded != 0 || !zero_bits(e.roll) || !zero_bits(e.twist);
   };
   // Rows counted, then filled at their offsets, each pass on the step's threads.
   const bool par = threads > 1 && n >= kParallelMin;
   const auto rows = static_cast<std::ptrdiff_t>(n);
-  std::vector<std::uint32_t> start(n + 1, 0);
+  auto& start = old.start;
+  start.assign(n + 1, 0);
   for_each_index(rows, threads, par, [&](std::ptrdiff_t r) {
     const auto i = static_cast<std::size_t>(r);
     std::uint32_t kept = 0;
-    for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k) kept += loaded(k) ? 1u : 0u;
+    for (std::uint32_t k = list.start[i]; k < list.start[i + 1]; ++k) kept += loaded(k) ? 1u : 0u;
     start[i + 1] = kept;
   });
   for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
-  if (start[n] == old.other.size()) return;
-  std::vector<std::uint32_t> other(start[n]);
-  std::vector<TangentSpring<D>> spring(start[n]);
-  std::vector<ContactExtra<D>> extra(extras ? start[n] : 0);
+  resize_with_room(old.other, start[n]);
+  resize_with_room(old.spring, start[n]);
+  resize_with_room(old.extra, extras ? start[n] : 0);
   for_each_index(rows, threads, par, [&](std::ptrdiff_t r) {
     const auto i = static_cast<std::size_t>(r);
     std::uint32_t m = start[i];
-    for (std::uint32_t k = old.start[i]; k < old.start[i + 1]; ++k)
+    for (std::uint32_t k = list.start[i]; k < list.start[i + 1]; ++k)
       if (loaded(k)) {
-        other[m] = old.other[k];
-        spring[m] = old.spring[k];
-        if (extras) extra[m] = old.extra[k];
+        old.other[m] = list.other[k];
+        old.spring[m] = list.spring[k];
+        if (extras) old.extra[m] = list.extra[k];
         ++m;
       }
   });
-  old.start.swap(start);
-  old.other.swap(other);
-  old.spring.swap(spring);
-  old.extra.swap(extra);
-  std::vector<CellImage>().swap(old.image);  // not carried (see build_neighbour_list)
 }
 
 }  // namespace geodem

@@ -35,8 +35,9 @@ struct Grid {
 
 // Renumbers grains in the order `order` (new k = old order[k]) and rewrites the
 // old neighbour rows in the new numbering so their history merges as usual. The
-// rewritten rows are assembled in `scratch` (the list being rebuilt, whose buffers
-// are free at this point) and swapped into `old`: no extra copy of the list is kept.
+// rewritten rows are assembled in `scratch` (the list being rebuilt, whose arrays
+// are free at this point) and copied back into `old`: each keeps its arrays, the list
+// the room of every pair within the skin and `old` that of the touching ones.
 template <int D>
 void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch, bool have_old,
               const std::vector<std::uint32_t>& order) {
@@ -110,7 +111,7 @@ void renumber(World<D>& world, NeighbourList<D>& old, NeighbourList<D>& scratch,
   scratch.spar_start.clear();
   move_rows(old.spar_start, old.spar, old.spar_spring, scratch.spar_start, scratch.spar,
             scratch.spar_spring, nullptr, nullptr);
-  old.swap_rows(scratch);
+  old.copy_rows(scratch);
 }
 
 // Grain-spar element pairs: each element visits the grid cells its reach covers (its
@@ -183,13 +184,14 @@ void build_neighbour_list(World<D>& world) {
 
   // Peak memory: during a build the old rows (for their history) and the new ones are both
   // resident. The force stage's crossing scratch is released first so that it does not add
-  // to that peak (it grows back in one step), and the old rows go when the build ends.
+  // to that peak (it grows back in one step). The old rows, the pairs with a history, are a
+  // copy freed when the build ends; the new rows are written over the list's own arrays,
+  // which ask the system for no fresh pages unless they grow.
   world.slab_crossing.release();
   NeighbourList<D> old;
-  old.swap_rows(L);
+  const std::size_t listed_before = L.other.size();
+  keep_loaded_pairs(L, old, n, world.threads);
   const bool have_old = old.start.size() == n + 1;
-  const std::size_t listed_before = old.other.size();
-  keep_loaded_pairs(old, n, world.threads);
 
   auto reset_rows = [&] {
     L.start.assign(n + 1, 0);
@@ -351,8 +353,8 @@ void build_neighbour_list(World<D>& world) {
       L.wall_start[i + 1] += L.wall_start[i];
     }
     if (par) {
-      L.other.resize(L.start[n]);
-      L.wall.resize(L.wall_start[n]);
+      resize_with_room(L.other, L.start[n]);
+      resize_with_room(L.wall, L.wall_start[n]);
     }
     std::uint32_t* other = L.other.data();
     std::uint32_t* walls = L.wall.data();
@@ -366,13 +368,15 @@ void build_neighbour_list(World<D>& world) {
     if (!world.spars.empty()) list_spar_pairs(world, g, rmax);
   }
 
-  L.spring.resize(L.other.size());
-  L.wall_spring.resize(L.wall.size());
+  resize_with_room(L.spring, L.other.size());
+  resize_with_room(L.wall_spring, L.wall.size());
   const bool extras = world.contact_extras;
   const bool old_extras =
       have_old && old.extra.size() == old.other.size() && old.wall_extra.size() == old.wall.size();
-  L.extra.resize(extras ? L.other.size() : 0);
-  L.wall_extra.resize(extras ? L.wall.size() : 0);
+  if (extras) {
+    resize_with_room(L.extra, L.other.size());
+    resize_with_room(L.wall_extra, L.wall.size());
+  }
   const ContactExtra<D> no_extra{};
   // A bonded pair that is no longer listed has separated beyond the skin: its bond is
   // broken (only possible when a bond's elastic stretch exceeds the skin).

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "contacts/batch_adds.hpp"
 #include "contacts/contact_batch.hpp"
 #include "contacts/contact_law.hpp"
 #include "contacts/pair_gather.hpp"
@@ -105,28 +106,31 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
   int n = 0;
   const PairLaw* law = nullptr;  // the batch's
   BatchLaw batch_law;
-  // The row whose own sums are open (none yet), and those sums.
-  std::size_t open_row = last;
-  Vec fi = Vec::Zero();
-  Rot ti = Dim<D>::zero_rot();
+  // The row whose own sums are open (none yet: `last`), and those sums.
+  OpenRowSums<D> open{last};
+  double* const force_d = as_doubles(force);
+  double* const torque_d = as_doubles(torque);
   auto close_row = [&] {
-    if (open_row == last) return;
-    force[open_row] += fi;
-    torque[open_row] += ti;
-    fi = Vec::Zero();
-    ti = Dim<D>::zero_rot();
-    open_row = last;
+    if (open.row == last) return;
+    for (int a = 0; a < D; ++a) force_d[open.row * D + a] += open.f[a];
+    for (int a = 0; a < kRot; ++a) torque_d[open.row * kRot + a] += open.t[a];
+    open = OpenRowSums<D>{last};
   };
 
   auto add_batch = [&] {
     batch_contact_forces<D, Periodic>(batch_law, grains, world.dt, batch, n);
+    if (!Measure && !Periodic && !batch.overlap_seen) {
+      add_plain_batch<D>(batch, n, last, force_d, torque_d, open, last, crossing);
+      n = 0;
+      return;
+    }
     for (int c = 0; c < n; ++c) {
       const auto i = static_cast<std::size_t>(batch.i[c]);
       const auto j = static_cast<std::uint32_t>(batch.j[c]);
       const auto k = static_cast<std::uint32_t>(batch.k[c]);
-      if (i != open_row) {
+      if (i != open.row) {
         close_row();
-        open_row = i;
+        open.row = i;
       }
       const double delta = batch.delta[c];
       if (batch.overlap_seen) [[unlikely]] {
@@ -148,8 +152,12 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
         tqi = batch.tqi[0][c];
         tj = batch.tj[0][c];
       }
-      fi -= f;
-      ti -= tqi;
+      for (int a = 0; a < D; ++a) open.f[a] -= f[a];
+      if constexpr (D == 3) {
+        for (int a = 0; a < kRot; ++a) open.t[a] -= tqi[a];
+      } else {
+        open.t[0] -= tqi;
+      }
       if (j < last) {  // same slab
         force[j] += f;
         torque[j] += tj;

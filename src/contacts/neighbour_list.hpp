@@ -83,6 +83,15 @@ struct CellImage {
   bool home() const { return m[0] == 0 && m[1] == 0 && m[2] == 0; }
 };
 
+// Resizes a list array, giving it an eighth more room when it must grow: a cleared vector
+// resized past its capacity gets the exact size, and rows that grow by a few pairs a build
+// would then be reallocated (fresh pages from the system) at every build.
+template <typename T>
+void resize_with_room(std::vector<T>& v, std::size_t n) {
+  if (n > v.capacity()) v.reserve(n + n / 8 + 16);
+  v.resize(n);
+}
+
 template <int D>
 struct NeighbourList {
   using Spring = TangentSpring<D>;
@@ -114,6 +123,20 @@ struct NeighbourList {
     wall_start.swap(o.wall_start), wall.swap(o.wall), wall_spring.swap(o.wall_spring);
     extra.swap(o.extra), wall_extra.swap(o.wall_extra), image.swap(o.image);
     spar_start.swap(o.spar_start), spar.swap(o.spar), spar_spring.swap(o.spar_spring);
+  }
+  // Copies the rows of another list into this one's arrays (which grow only if they must).
+  void copy_rows(const NeighbourList& o) {
+    start.assign(o.start.begin(), o.start.end()), other.assign(o.other.begin(), o.other.end());
+    spring.assign(o.spring.begin(), o.spring.end());
+    wall_start.assign(o.wall_start.begin(), o.wall_start.end());
+    wall.assign(o.wall.begin(), o.wall.end());
+    wall_spring.assign(o.wall_spring.begin(), o.wall_spring.end());
+    extra.assign(o.extra.begin(), o.extra.end());
+    wall_extra.assign(o.wall_extra.begin(), o.wall_extra.end());
+    image.assign(o.image.begin(), o.image.end());
+    spar_start.assign(o.spar_start.begin(), o.spar_start.end());
+    spar.assign(o.spar.begin(), o.spar.end());
+    spar_spring.assign(o.spar_spring.begin(), o.spar_spring.end());
   }
   std::size_t bytes() const {
     return start.capacity() * 4 + other.capacity() * 4 + spring.capacity() * sizeof(Spring) +

@@ -265,8 +265,8 @@ TYPED_TEST(NeighbourListTest, OldRowsKeepThePairsThatCarryAHistory) {
       }
     }
   for (int threads : {1, 2}) {
-    NeighbourList<D> old = L;
-    keep_loaded_pairs(old, n, threads);
+    NeighbourList<D> list = L, old;
+    keep_loaded_pairs(list, old, n, threads);
     ASSERT_EQ(old.start.size(), n + 1);
     for (std::size_t i = 0; i < n; ++i) {
       const std::vector<std::uint32_t> row(old.other.begin() + old.start[i],
