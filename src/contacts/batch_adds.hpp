@@ -28,7 +28,8 @@
 
 namespace geodem {
 
-// The row whose sums carry over between batches; `row == none` when no row is open.
+// The row whose sums carry over between batches; `row == last` (the slab's end) when no row is
+// open.
 template <int D>
 struct OpenRowSums {
   static constexpr int kRot = ContactBatch<D>::kRot;
@@ -37,25 +38,32 @@ struct OpenRowSums {
   double t[kRot] = {};
 };
 
+// Adds the open row's sums to its grain, if a row is open, and leaves none open.
+template <int D>
+void close_open_row(OpenRowSums<D>& open, std::size_t last, double* force, double* torque) {
+  constexpr int kRot = ContactBatch<D>::kRot;
+  if (open.row == last) return;
+  for (int a = 0; a < D; ++a) force[open.row * D + a] += open.f[a];
+  for (int a = 0; a < kRot; ++a) torque[open.row * kRot + a] += open.t[a];
+  open = OpenRowSums<D>{last};
+}
+
 template <int D>
 void add_plain_batch(const ContactBatch<D>& b, int n, std::size_t last, double* __restrict force,
-                     double* __restrict torque, OpenRowSums<D>& open, std::size_t none,
+                     double* __restrict torque, OpenRowSums<D>& open,
                      typename SlabCrossings<SlabCrossing<D>>::Writer& crossing) {
   constexpr int kRot = ContactBatch<D>::kRot;
   if (n == 0) return;
   // The row left open by the previous batch closes first if this batch starts a new one.
-  if (open.row != none && static_cast<std::size_t>(b.i[0]) != open.row) {
-    for (int a = 0; a < D; ++a) force[open.row * D + a] += open.f[a];
-    for (int a = 0; a < kRot; ++a) torque[open.row * kRot + a] += open.t[a];
-    open.row = none;
-  }
+  if (static_cast<std::size_t>(b.i[0]) != open.row) close_open_row(open, last, force, torque);
   alignas(64) double sum_f[D][ContactBatch<D>::kSize];
   alignas(64) double sum_t[kRot][ContactBatch<D>::kSize];
   double fi[D], ti[kRot];
   for (int a = 0; a < D; ++a) fi[a] = open.f[a];
   for (int a = 0; a < kRot; ++a) ti[a] = open.t[a];
-  // open.row == none, or the batch's first row: the mask restarts the sums in the first case.
-  std::int64_t previous = open.row == none ? -1 : static_cast<std::int64_t>(open.row);
+  // No row open (open.row == last), or the batch's first row: the mask restarts the sums in
+  // the first case.
+  std::int64_t previous = open.row == last ? -1 : static_cast<std::int64_t>(open.row);
   for (int c = 0; c < n; ++c) {
     const std::int64_t i = b.i[c];
     const auto j = static_cast<std::size_t>(b.j[c]);

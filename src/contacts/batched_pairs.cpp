@@ -110,17 +110,12 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
   OpenRowSums<D> open{last};
   double* const force_d = as_doubles(force);
   double* const torque_d = as_doubles(torque);
-  auto close_row = [&] {
-    if (open.row == last) return;
-    for (int a = 0; a < D; ++a) force_d[open.row * D + a] += open.f[a];
-    for (int a = 0; a < kRot; ++a) torque_d[open.row * kRot + a] += open.t[a];
-    open = OpenRowSums<D>{last};
-  };
+  auto close_row = [&] { close_open_row(open, last, force_d, torque_d); };
 
   auto add_batch = [&] {
     batch_contact_forces<D, Periodic>(batch_law, grains, world.dt, batch, n);
     if (!Measure && !Periodic && !batch.overlap_seen) {
-      add_plain_batch<D>(batch, n, last, force_d, torque_d, open, last, crossing);
+      add_plain_batch<D>(batch, n, last, force_d, torque_d, open, crossing);
       n = 0;
       return;
     }

@@ -130,14 +130,14 @@ TYPED_TEST(BatchAdds, SameBitsAsTheScalarLoop) {
       for (int a = 0; a < D; ++a) batch->f[a][m] = c.f[a];
       for (int a = 0; a < kRot; ++a) batch->tqi[a][m] = c.tqi[a], batch->tj[a][m] = c.tj[a];
     }
-    add_plain_batch<D>(*batch, m, last, got_f.data(), got_t.data(), open, last, writer);
+    add_plain_batch<D>(*batch, m, last, got_f.data(), got_t.data(), open, writer);
     ++batches;
     single += m == 1 ? 1 : 0;
   }
   // The slab's end closes the last row (batched_pairs.cpp's close_row).
   ASSERT_NE(open.row, last);
-  for (int a = 0; a < D; ++a) got_f[open.row * D + a] += open.f[a];
-  for (int a = 0; a < kRot; ++a) got_t[open.row * kRot + a] += open.t[a];
+  close_open_row(open, last, got_f.data(), got_t.data());
+  ASSERT_EQ(open.row, last);
   EXPECT_GT(batches, 20);
   EXPECT_GT(single, 2);
 
