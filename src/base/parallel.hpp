@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/slab_shares.hpp"
+
 namespace geodem {
 
 // Loops shorter than this run on the calling thread: a parallel region costs a few
@@ -140,8 +142,7 @@ void for_slabs(const SlabPlan& plan, int threads, Body&& body) {
     body(slab, plan.first(slab), plan.last(slab));
   };
   if (threads > 1 && ns >= 2 && plan.n >= kParallelMin) {  // (else no region: for_each_index)
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-    for (std::ptrdiff_t s = 0; s < ns; ++s) run(s);
+    run_in_shares(plan.count, threads, [&](std::size_t s) { run(static_cast<std::ptrdiff_t>(s)); });
     return;
   }
   for (std::ptrdiff_t s = 0; s < ns; ++s) run(s);
@@ -205,16 +206,14 @@ class SlabCrossings {
         for (const Entry& e : b[s * width + static_cast<std::size_t>(t)]) add(e);
     };
     if (threads > 1 && plan_.n >= kParallelMin && sources >= 2) {  // (else no region)
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-      for (std::ptrdiff_t t = 0; t < targets; ++t) run(t);
+      // Target slab t falls in the same share as the force stage's slab t.
+      run_in_shares(width, threads, [&](std::size_t t) { run(static_cast<std::ptrdiff_t>(t)); });
       return;
     }
     for (std::ptrdiff_t t = 0; t < targets; ++t) run(t);
   }
   // Gives the memory back (before a neighbour-list build, whose peak it would add to).
-  void release() {
-    std::vector<std::vector<Entry>>().swap(buckets_);
-  }
+  void release() { std::vector<std::vector<Entry>>().swap(buckets_); }
 
  private:
   std::vector<std::vector<Entry>> buckets_;  // source-major: [s * (slabs + 1) + target]
