@@ -198,19 +198,22 @@ class SlabCrossings {
   // grains are one more target).
   template <typename Add>
   void apply(int threads, Add&& add) {
-    std::vector<Entry>* b = buckets_.data();
-    const std::size_t width = slabs_ + 1, sources = slabs_;
-    const auto targets = static_cast<std::ptrdiff_t>(width);
-    auto run = [&](std::ptrdiff_t t) {
-      for (std::size_t s = 0; s < sources; ++s)
-        for (const Entry& e : b[s * width + static_cast<std::size_t>(t)]) add(e);
-    };
-    if (threads > 1 && plan_.n >= kParallelMin && sources >= 2) {  // (else no region)
+    const std::size_t targets = slabs_ + 1;
+    if (threads > 1 && plan_.n >= kParallelMin && slabs_ >= 2) {  // (else no region)
       // Target slab t falls in the same share as the force stage's slab t.
-      run_in_shares(width, threads, [&](std::size_t t) { run(static_cast<std::ptrdiff_t>(t)); });
+      run_in_shares(targets, threads, [&](std::size_t t) { apply_to(t, add); });
       return;
     }
-    for (std::ptrdiff_t t = 0; t < targets; ++t) run(t);
+    for (std::size_t t = 0; t < targets; ++t) apply_to(t, add);
+  }
+  // Calls add(entry) for the entries of one target (slab `target`, or slab count for the
+  // bodies beyond the grains), in (source slab, entry) order: for a stage that goes on with
+  // the target's bodies in the same task.
+  template <typename Add>
+  void apply_to(std::size_t target, Add&& add) const {
+    const std::size_t width = slabs_ + 1;
+    for (std::size_t s = 0; s < slabs_; ++s)
+      for (const Entry& e : buckets_[s * width + target]) add(e);
   }
   // Gives the memory back (before a neighbour-list build, whose peak it would add to).
   void release() { std::vector<std::vector<Entry>>().swap(buckets_); }

@@ -23,6 +23,7 @@
 #include "contacts/contact_law.hpp"
 #include "contacts/plane_walls.hpp"
 #include "contacts/slab_tally.hpp"
+#include "contacts/wall_rows.hpp"
 
 namespace geodem {
 
@@ -201,33 +202,27 @@ void pair_rows(World<D>& world, std::size_t first, std::size_t last, SlabTally<D
 // part: the sum over grains of x F^T, F each grain's total from its contacts (the forces
 // hold nothing else when it runs). Per slab, in slab order, as every other sum.
 template <int D>
-void cell_fabric_of_grains(World<D>& world, std::vector<SlabTally<D>>& tallies) {
+void cell_fabric_of_grains(const World<D>& world, std::size_t first, std::size_t last,
+                           SlabTally<D>& tally) {
   const auto& P = world.particles;
-  SlabTally<D>* tally = tallies.data();
-  for_slabs(world.slab_plan(P.size()), world.threads,
-            [&](std::size_t s, std::size_t first, std::size_t last) {
-              typename Dim<D>::Tensor sum = Dim<D>::Tensor::Zero();
-              for (std::size_t i = first; i < last; ++i) sum += P.pos[i] * P.force[i].transpose();
-              tally[s].cell_fabric += sum;
-            });
+  typename Dim<D>::Tensor sum = Dim<D>::Tensor::Zero();
+  for (std::size_t i = first; i < last; ++i) sum += P.pos[i] * P.force[i].transpose();
+  tally.cell_fabric += sum;
 }
 
 // A decomposed cell's exact part of the same sum (ExactTally): the rank's own grains' x F^T,
 // a clump member's x its clump's centre (cell_stress takes that correction in one process).
 template <int D>
-void exact_cell_fabric_of_grains(World<D>& world, std::vector<SlabTally<D>>& tallies) {
+void exact_cell_fabric_of_grains(const World<D>& world, std::size_t first, std::size_t last,
+                                 SlabTally<D>& tally) {
   const auto& P = world.particles;
   const auto& C = world.clumps;
   const bool clumps = !P.clump.empty();
-  SlabTally<D>* tally = tallies.data();
-  for_slabs(world.slab_plan(P.size()), world.threads,
-            [&](std::size_t s, std::size_t first, std::size_t last) {
-              for (std::size_t i = first; i < last; ++i) {
-                if (P.flags[i] & kGhost) continue;
-                const bool member = clumps && P.clump[i] != kNoClump;
-                tally[s].exact.add_cell_fabric(member ? C.pos[P.clump[i]] : P.pos[i], P.force[i]);
-              }
-            });
+  for (std::size_t i = first; i < last; ++i) {
+    if (P.flags[i] & kGhost) continue;
+    const bool member = clumps && P.clump[i] != kNoClump;
+    tally.exact.add_cell_fabric(member ? C.pos[P.clump[i]] : P.pos[i], P.force[i]);
+  }
 }
 
 template <int D, bool Measure, bool Extras, bool Periodic>
@@ -250,112 +245,35 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
     }
     pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally[s], crossing.slab(s));
   });
-  // The crossing forces, each grain's in slab order.
-  auto& P = world.particles;
-  crossing.apply(world.threads, [&P](const SlabCrossing<D>& c) {
-    P.force[c.body] += c.a;
-    P.torque[c.body] += c.b;
-  });
-  // (a decomposed cell's plain sum would be replaced by its exact one: not taken)
-  if constexpr (Periodic) {
-    if (world.domain)
-      exact_cell_fabric_of_grains(world, tallies);
-    else if constexpr (kFabricByGrain<D>)
-      cell_fabric_of_grains(world, tallies);
-  }
 }
 
-template <int D, bool Measure, bool Extras>
-void grain_walls(World<D>& world, std::vector<SlabTally<D>>& tallies) {
-  using Vec = typename Dim<D>::Vec;
+// What is left of slab s's grains once every slab's pairs are done, all in one pass over the
+// slabs (one parallel region, where three passes had one each): the forces from pairs of
+// earlier slabs (SlabCrossings, in source-slab order), then in a periodic cell the slab's part
+// of the sum of x F^T (the grains' forces then hold their pair contacts alone), then the wall
+// contacts. Each grain gets its additions in the order the three passes gave.
+template <int D, bool Measure, bool Extras, bool Periodic>
+void finish_slabs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   auto& P = world.particles;
-  auto& L = world.nlist;
-  const double dt = world.dt;
-  auto row = [&](std::size_t i, SlabTally<D>& t) {
-    const std::uint32_t b = L.wall_start[i], e = L.wall_start[i + 1];
-    for (std::uint32_t k = b; k < e; ++k) {
-      const auto& wall = world.walls[L.wall[k]];
-      const Vec xi = P.pos[i];
-      const double ri = P.radius[i];
-      Vec q;
-      double gap;
-      Vec nrm;  // from the grain to the wall
-      if (wall.kind == WallKind::kPlane) {
-        gap = (xi - wall.point).dot(wall.normal);
-        nrm = -wall.normal;
-      } else {
-        if (!wall_closest(wall, xi, q)) {
-          L.wall_spring[k] = unloaded_spring<D>();
-          if constexpr (Extras) L.wall_extra[k] = ContactExtra<D>{};
-          continue;
-        }
-        const Vec d = q - xi;
-        gap = d.norm();
-        if (gap <= 0.0) continue;  // centre exactly on the segment: no defined normal
-        nrm = d / gap;
-      }
-      const double delta = ri - gap;
-      if (delta <= 0.0) {
-        L.wall_spring[k] = unloaded_spring<D>();
-        if constexpr (Extras) L.wall_extra[k] = ContactExtra<D>{};
-        continue;
-      }
-      if (delta > world.overlap_limit * ri) [[unlikely]]
-        t.note_overlap(i, -1 - static_cast<std::int64_t>(L.wall[k]), delta / ri);
-      // The contact point lies on the wall's surface: a rigid wall does not indent, so the
-      // lever arm is R - delta (two grains share their overlap: R - delta / 2 each).
-      const double a = ri - delta;
-      const Vec vrel = wall.velocity - (P.vel[i] + Dim<D>::cross(P.angvel[i], a * nrm));
-      const PairLaw& law = world.wall_law(P.material[i], L.wall[k]);
-      const auto& shares = world.collision_shares.wall;
-      const double inv_m = shares.empty() ? P.inv_mass[i] : P.inv_mass[i] * shares[k];
-      double fn;
-      const Vec f = contact_force<D>(law, ri, wall_partner_radius(law, ri), inv_m, nrm, delta, vrel,
-                                     dt, L.wall_spring[k], fn);
-      P.force[i] -= f;
-      P.torque[i] -= a * Dim<D>::cross(nrm, f);
-      if constexpr (Extras) {
-        if (law.rolling()) {
-          // The wall does not rotate: wrel = -w_grain; the grain is body 1.
-          const auto m = rolling_moment<D>(
-              law, tangential_stiffness(law, ri, wall_partner_radius(law, ri), delta), ri,
-              kWallRadius, nrm, -P.angvel[i], dt, fn, L.wall_extra[k]);
-          P.torque[i] -= m;
-        }
-      }
-      t.wall_force[L.wall[k]] += f;
-      const double k_wall = normal_stiffness(law, ri, wall_partner_radius(law, ri), fn, delta);
-      t.wall_stiffness[L.wall[k]] += k_wall;
-      const double c_wall =
-          world.tally_wall_dashpots
-              ? normal_dashpot(law, ri, wall_partner_radius(law, ri), inv_m, delta)
-              : 0.0;
-      t.wall_dashpot[L.wall[k]] += c_wall;
-      if (t.exact.on) t.exact.add_wall(L.wall[k], f, k_wall, c_wall);
-      if constexpr (Measure) {
-        t.stats.fabric_stress += (a * nrm) * f.transpose();
-        t.stats.sum_force += f.norm();
-        ++t.stats.wall_contacts;
-        const double energy =
-            fn > 0.0 ? normal_energy(law, ri, wall_partner_radius(law, ri), fn, delta) : 0.0;
-        if (fn > 0.0) t.stats.elastic_energy += energy;
-        if (t.exact.on) t.exact.add_contact(Vec(a * nrm), f, energy, true);
-      }
-    }
-  };
+  auto& crossing = world.slab_crossing;
+  const SlabPlan plan = world.slab_plan(P.size());
+  const bool walls = !world.walls.empty();
+  const bool planes = walls_by_plane_passes(world, Measure, Extras);
   SlabTally<D>* tally = tallies.data();
-  // A lab box's walls in two passes (contacts/plane_walls.cpp) unless the scalar loop is asked
-  // for; the measured steps and the contacts with extras keep this loop.
-  const bool planes =
-      !Measure && !Extras && contact_path() != ContactPath::kScalar && plane_walls_only(world);
-  for_slabs(world.slab_plan(world.particles.size()), world.threads,
-            [&](std::size_t s, std::size_t first, std::size_t last) {
-              if (planes) {
-                plane_wall_rows(world, first, last, tally[s]);
-                return;
-              }
-              for (std::size_t i = first; i < last; ++i) row(i, tally[s]);
-            });
+  for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
+    crossing.apply_to(s, [&P](const SlabCrossing<D>& c) {
+      P.force[c.body] += c.a;
+      P.torque[c.body] += c.b;
+    });
+    // (a decomposed cell's plain sum would be replaced by its exact one: not taken)
+    if constexpr (Periodic) {
+      if (world.domain)
+        exact_cell_fabric_of_grains(world, first, last, tally[s]);
+      else if constexpr (kFabricByGrain<D>)
+        cell_fabric_of_grains(world, first, last, tally[s]);
+    }
+    if (walls) wall_rows<D, Measure, Extras>(world, first, last, tally[s], planes);
+  });
 }
 
 }  // namespace
@@ -428,7 +346,11 @@ void compute_contact_forces(World<D>& world) {
     } else {
       grain_pairs<D, Measure, Extras, false>(world, tallies);
     }
-    if (!world.walls.empty()) grain_walls<D, Measure, Extras>(world, tallies);
+    if (world.cell.periodic) {
+      finish_slabs<D, Measure, Extras, true>(world, tallies);
+    } else {
+      finish_slabs<D, Measure, Extras, false>(world, tallies);
+    }
   };
   const bool extras = world.contact_extras;
   if (world.measure_this_step) {
