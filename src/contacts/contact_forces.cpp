@@ -235,7 +235,14 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   const bool batched = contact_path() != ContactPath::kScalar && batch_kernel_has(world.pair_laws);
   // (the vector gather pass runs outside a periodic cell only: no scan there)
   const bool one_law = batched && !Extras && !Periodic && grains_of_one_material(world);
+  auto& P = world.particles;
   for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
+    // The slab's forces start from zero here, in the task that adds to them first (a pass of
+    // its own was one more parallel region a step).
+    std::fill(P.force.begin() + static_cast<std::ptrdiff_t>(first),
+              P.force.begin() + static_cast<std::ptrdiff_t>(last), Dim<D>::Vec::Zero());
+    std::fill(P.torque.begin() + static_cast<std::ptrdiff_t>(first),
+              P.torque.begin() + static_cast<std::ptrdiff_t>(last), Dim<D>::zero_rot());
     if constexpr (!Extras) {
       if (batched) {
         batched_pair_rows<D, Measure, Periodic>(world, first, last, tally[s], crossing.slab(s),

@@ -5,7 +5,7 @@
 
 namespace geodem {
 
-// Adds contact forces and torques to the grains and sums wall forces. When
+// Sets the grains' forces and torques to those of their contacts and sums wall forces. When
 // world.measure_this_step is set, also fills world.stats (stress, force sums).
 template <int D>
 void compute_contact_forces(World<D>& world);

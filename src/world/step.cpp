@@ -295,12 +295,7 @@ void step(World<D>& world) {
   }
   {
     ScopedStage<D> t(world, Stage::kContactForces);
-    auto& P = world.particles;
-    const auto n = static_cast<std::ptrdiff_t>(P.size());
-    for_each_index(n, world.threads, P.size() >= kParallelMin, [&](std::ptrdiff_t i) {
-      P.force[i].setZero();
-      P.torque[i] = Dim<D>::zero_rot();
-    });
+    // (the contact stage sets every grain's force and torque: no pass of its own zeroes them)
     update_collision_shares(world);
     compute_contact_forces(world);
     compute_spar_contacts(world);
