@@ -258,7 +258,9 @@ void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
 // slabs (one parallel region, where three passes had one each): the forces from pairs of
 // earlier slabs (SlabCrossings, in source-slab order), then in a periodic cell the slab's part
 // of the sum of x F^T (the grains' forces then hold their pair contacts alone), then the wall
-// contacts. Each grain gets its additions in the order the three passes gave.
+// contacts. Each grain gets its additions in the order the three passes gave. (The crossings'
+// extra target, bodies numbered from the grain count up, stays empty here: every partner of a
+// grain-grain pair is a grain.)
 template <int D, bool Measure, bool Extras, bool Periodic>
 void finish_slabs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   auto& P = world.particles;
