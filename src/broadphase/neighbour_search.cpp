@@ -10,6 +10,10 @@
 #include <cmath>
 #include <limits>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace geodem {
 
 namespace {
@@ -164,6 +168,59 @@ void list_spar_pairs(World<D>& world, const Grid<D>& g, double rmax) {
 
 }  // namespace
 
+// Runs scan_rows(lo, hi, pairs, walls) over the rows [0, n) in one run of consecutive rows a
+// thread: the first thread's rows go straight into the list, the others' into
+// world.list_parts, then copied in at their offsets (their row ends, counted from their own
+// part, shifted likewise). scan_rows writes row ends into L.start / L.wall_start.
+template <int D, typename ScanRows>
+void scan_rows_in_parts(World<D>& world, std::size_t n, ScanRows&& scan_rows) {
+  auto& L = world.nlist;
+  auto& parts = world.list_parts;
+  if (parts.size() < static_cast<std::size_t>(world.threads))
+    parts.resize(static_cast<std::size_t>(world.threads));
+  std::size_t team = 1;
+  // Per part, where its pairs and walls end (then begin, once summed); reached by pointer in
+  // the region, where the thread-local's name would be each thread's own.
+  static thread_local std::vector<std::array<std::size_t, 2>> part_ends;
+  part_ends.assign(static_cast<std::size_t>(world.threads) + 1, {0, 0});
+  auto* ends = part_ends.data();
+  auto* part = parts.data();
+#pragma omp parallel num_threads(world.threads)
+  {
+    std::size_t t = 0;
+#ifdef _OPENMP
+    t = static_cast<std::size_t>(omp_get_thread_num());
+#pragma omp single
+    team = static_cast<std::size_t>(omp_get_num_threads());
+#endif
+    const std::size_t lo = n * t / team, hi = n * (t + 1) / team;
+    auto& pairs = t == 0 ? L.other : part[t].other;
+    auto& walls = t == 0 ? L.wall : part[t].wall;
+    pairs.clear();
+    walls.clear();
+    scan_rows(lo, hi, pairs, walls);
+    ends[t + 1] = {pairs.size(), walls.size()};
+  }
+  for (std::size_t t = 0; t < team; ++t)
+    for (int k = 0; k < 2; ++k) ends[t + 1][k] += ends[t][k];
+  resize_with_room(L.other, ends[team][0]);
+  resize_with_room(L.wall, ends[team][1]);
+  std::uint32_t* other = L.other.data();
+  std::uint32_t* wall = L.wall.data();
+  for_each_index(static_cast<std::ptrdiff_t>(team), world.threads, true, [&](std::ptrdiff_t tt) {
+    const auto t = static_cast<std::size_t>(tt);
+    if (t == 0) return;
+    std::copy(part[t].other.begin(), part[t].other.end(), other + ends[t][0]);
+    std::copy(part[t].wall.begin(), part[t].wall.end(), wall + ends[t][1]);
+    const auto pair_base = static_cast<std::uint32_t>(ends[t][0]);
+    const auto wall_base = static_cast<std::uint32_t>(ends[t][1]);
+    for (std::size_t i = n * t / team; i < n * (t + 1) / team; ++i) {
+      L.start[i + 1] += pair_base;
+      L.wall_start[i + 1] += wall_base;
+    }
+  });
+}
+
 template <int D>
 double skin_length(const World<D>& world) {
   const auto& r = world.particles.radius;
@@ -188,7 +245,7 @@ void build_neighbour_list(World<D>& world) {
   // copy freed when the build ends; the new rows are written over the list's own arrays,
   // which ask the system for no fresh pages unless they grow.
   world.slab_crossing.release();
-  NeighbourList<D> old;
+  NeighbourList<D>& old = world.old_rows;
   const std::size_t listed_before = L.other.size();
   keep_loaded_pairs(L, old, n, world.threads);
   const bool have_old = old.start.size() == n + 1;
@@ -325,46 +382,26 @@ void build_neighbour_list(World<D>& world) {
         if (gap < ri) wall(static_cast<std::uint32_t>(w));
       }
     };
-    const auto ni = static_cast<std::ptrdiff_t>(n);
-    const bool par = world.threads > 1 && n >= kParallelMin;
-    const std::ptrdiff_t two_pass_rows = par ? ni : 0;
-    if (!par) {
-      // One thread: a single pass appending rows gives the same rows at half the cost.
-      for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t row_begin = L.other.size();
+    // One pass over the rows. With several threads each takes a run of consecutive rows: the
+    // first appends its rows to the list itself, the others to parts of their own, copied in
+    // after it (a count pass and a fill pass scanned every grain's cells twice). The rows are
+    // the same whatever the threads.
+    auto scan_rows = [&](std::size_t first, std::size_t last, std::vector<std::uint32_t>& pairs,
+                         std::vector<std::uint32_t>& walls) {
+      for (std::size_t i = first; i < last; ++i) {
+        const std::size_t row_begin = pairs.size();
         scan(
-            i, [&](std::uint32_t j) { L.other.push_back(j); },
-            [&](std::uint32_t w) { L.wall.push_back(w); });
-        std::sort(L.other.begin() + static_cast<std::ptrdiff_t>(row_begin), L.other.end());
-        L.start[i + 1] = static_cast<std::uint32_t>(L.other.size());
-        L.wall_start[i + 1] = static_cast<std::uint32_t>(L.wall.size());
+            i, [&](std::uint32_t j) { pairs.push_back(j); },
+            [&](std::uint32_t w) { walls.push_back(w); });
+        std::sort(pairs.begin() + static_cast<std::ptrdiff_t>(row_begin), pairs.end());
+        L.start[i + 1] = static_cast<std::uint32_t>(pairs.size());
+        L.wall_start[i + 1] = static_cast<std::uint32_t>(walls.size());
       }
-    }
-    for_each_index(two_pass_rows, world.threads, par, [&](std::ptrdiff_t ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      std::uint32_t np = 0, nw = 0;
-      scan(
-          i, [&](std::uint32_t) { ++np; }, [&](std::uint32_t) { ++nw; });
-      L.start[i + 1] = np;
-      L.wall_start[i + 1] = nw;
-    });
-    for (std::size_t i = 0; par && i < n; ++i) {
-      L.start[i + 1] += L.start[i];
-      L.wall_start[i + 1] += L.wall_start[i];
-    }
-    if (par) {
-      resize_with_room(L.other, L.start[n]);
-      resize_with_room(L.wall, L.wall_start[n]);
-    }
-    std::uint32_t* other = L.other.data();
-    std::uint32_t* walls = L.wall.data();
-    for_each_index(two_pass_rows, world.threads, par, [&](std::ptrdiff_t ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      std::uint32_t p = L.start[i], q = L.wall_start[i];
-      scan(
-          i, [&](std::uint32_t j) { other[p++] = j; }, [&](std::uint32_t w) { walls[q++] = w; });
-      std::sort(other + L.start[i], other + p);
-    });
+    };
+    if (world.threads > 1 && n >= kParallelMin)
+      scan_rows_in_parts(world, n, scan_rows);
+    else
+      scan_rows(0, n, L.other, L.wall);
     if (!world.spars.empty()) list_spar_pairs(world, g, rmax);
   }
 
@@ -424,6 +461,22 @@ void build_neighbour_list(World<D>& world) {
                       L.spar_spring.data() + sb, sn, unloaded_spring<D>(), drop_nothing);
       }
     }
+  }
+
+  // The old rows' arrays, the other threads' parts of the rows and the force arrays (given
+  // back for the build) would be mapped
+  // afresh at the next build and step: page faults that cost a small system up to a tenth of
+  // its run (docs/performance.md, "Memory"). Below kSmallBuildScratch both stay mapped; above
+  // it, the peak memory per grain rules and both go back to the system.
+  std::size_t scratch =
+      old.bytes() + n * (sizeof(typename Dim<D>::Vec) + sizeof(typename Dim<D>::Rot));
+  for (const auto& part : world.list_parts)
+    scratch += (part.other.capacity() + part.wall.capacity()) * sizeof(std::uint32_t);
+  world.keep_build_scratch = scratch < kSmallBuildScratch;
+  if (!world.keep_build_scratch) {
+    old = NeighbourList<D>{};
+    world.list_parts.clear();
+    world.list_parts.shrink_to_fit();
   }
 
   P.pos_at_build = P.pos;

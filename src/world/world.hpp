@@ -217,6 +217,16 @@ struct StepScratch {
   CollisionShares collision_shares;
   // Per-slab crossing contributions of the force stage and the automatic time step.
   mutable SlabCrossings<SlabCrossing<D>> slab_crossing;
+  // A list build's copy of the old rows (their history), its parts of the rows and, while the
+  // build runs, the force arrays given back: kept mapped between builds while both together weigh
+  // less than kSmallBuildScratch (broadphase/neighbour_search.cpp), given back otherwise.
+  NeighbourList<D> old_rows;
+  // A parallel build's rows of threads 1, 2, ... (thread 0 writes into the list itself).
+  struct ListPart {
+    std::vector<std::uint32_t> other, wall;
+  };
+  std::vector<ListPart> list_parts;
+  bool keep_build_scratch = false;
   // Each clump's members in grain order, remade after each neighbour-list build (grains are
   // renumbered there) or when the counts changed: the clump integration sums them clump by
   // clump, on several threads, in the order of the grains.

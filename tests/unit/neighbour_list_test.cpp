@@ -135,6 +135,85 @@ TYPED_TEST(NeighbourListTest, MatchesBruteForceOnRandomClouds) {
   }
 }
 
+// A tangential spring of length v along the first axis.
+template <int D>
+TangentSpring<D> spring_of(double v) {
+  if constexpr (D == 2) {
+    return v;
+  } else {
+    return Vec<D>(v, 0.0, 0.0);
+  }
+}
+
+// On threads, each thread lists a run of consecutive rows into a part of its own, copied in
+// after the first thread's: the rows, and the history a second build carries over with the
+// old rows kept from the first, must be the same on any thread count.
+TYPED_TEST(NeighbourListTest, RowsAndHistoryTheSameOnAnyThreadCount) {
+  constexpr int D = TypeParam::value;
+  const std::size_t n = 2 * kParallelMin + 77;  // enough for the build to take threads
+  const double side = D == 2 ? 120.0 : 24.0;
+  World<D> reference;
+  for (int threads : {1, 2, 3, 5}) {
+    SCOPED_TRACE("threads " + std::to_string(threads));
+    World<D> w = random_cloud<D>(Cloud::kUniform, n, side, 42);
+    w.threads = threads;
+    w.skin_factor = 0.3;
+    build_neighbour_list(w);
+    // A history on every third pair and wall entry, then every grain nudged and rebuilt.
+    for (std::size_t k = 0; k < w.nlist.spring.size(); k += 3)
+      w.nlist.spring[k] = spring_of<D>(1e-3 * double(k + 1));
+    for (std::size_t k = 0; k < w.nlist.wall_spring.size(); k += 3)
+      w.nlist.wall_spring[k] = spring_of<D>(-1e-3 * double(k + 1));
+    for (std::size_t i = 0; i < n; ++i) w.particles.pos[i][0] += 0.05 * std::sin(double(i));
+    build_neighbour_list(w);
+    check_against_brute_force(w);
+    EXPECT_TRUE(w.keep_build_scratch) << "a small build's scratch stays mapped";
+    if (threads == 1) {
+      reference = w;
+      continue;
+    }
+    const auto& L = w.nlist;
+    const auto& R = reference.nlist;
+    EXPECT_EQ(L.start, R.start);
+    EXPECT_EQ(L.other, R.other);
+    EXPECT_EQ(L.wall_start, R.wall_start);
+    EXPECT_EQ(L.wall, R.wall);
+    ASSERT_EQ(L.spring.size(), R.spring.size());
+    for (std::size_t k = 0; k < L.spring.size(); ++k)
+      ASSERT_EQ(L.spring[k], R.spring[k]) << "pair entry " << k;
+    ASSERT_EQ(L.wall_spring.size(), R.wall_spring.size());
+    for (std::size_t k = 0; k < L.wall_spring.size(); ++k)
+      ASSERT_EQ(L.wall_spring[k], R.wall_spring[k]) << "wall entry " << k;
+  }
+}
+
+// A build whose scratch (the force arrays alone, here) weighs more than kSmallBuildScratch
+// gives it back: the old rows' copy and the threads' parts are freed when the build ends.
+TYPED_TEST(NeighbourListTest, LargeBuildsGiveTheirScratchBack) {
+  constexpr int D = TypeParam::value;
+  const std::size_t n =
+      kSmallBuildScratch / (sizeof(typename Dim<D>::Vec) + sizeof(typename Dim<D>::Rot)) + 1;
+  World<D> w;
+  const auto mat = add_material(w, linear_material(1e5, 5e4, 0.5, 0.5));
+  w.resolve_pair_laws();
+  w.threads = 2;
+  // A simple cubic lattice of touching unit spheres: every grain has a history to carry.
+  const auto per_row = static_cast<std::size_t>(std::ceil(std::pow(double(n), 1.0 / D)));
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec<D> x;
+    std::size_t rest = i;
+    for (int k = 0; k < D; ++k, rest /= per_row) x[k] = 1.99 * double(rest % per_row);
+    w.particles.add(x, 1.0, 1000.0, mat);
+  }
+  build_neighbour_list(w);
+  for (auto& s : w.nlist.spring) s = spring_of<D>(1e-6);
+  build_neighbour_list(w);
+  EXPECT_FALSE(w.keep_build_scratch);
+  EXPECT_EQ(w.old_rows.bytes(), 0u) << "the old rows' copy is freed";
+  EXPECT_TRUE(w.list_parts.empty());
+  EXPECT_GT(w.nlist.other.size(), n / 2) << "the lattice's neighbours are listed";
+}
+
 // The Verlet guarantee: after every grain moved less than half the skin, each pair now in
 // contact was listed at the last build.
 TYPED_TEST(NeighbourListTest, ContactsStayListedWithinHalfTheSkin) {
