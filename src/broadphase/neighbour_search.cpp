@@ -242,8 +242,9 @@ void build_neighbour_list(World<D>& world) {
   // Peak memory: during a build the old rows (for their history) and the new ones are both
   // resident. The force stage's crossing scratch is released first so that it does not add
   // to that peak (it grows back in one step). The old rows, the pairs with a history, are a
-  // copy freed when the build ends; the new rows are written over the list's own arrays,
-  // which ask the system for no fresh pages unless they grow.
+  // copy, freed when the build ends unless the build's scratch is small (at the end); the new
+  // rows are written over the list's own arrays, which ask the system for no fresh pages unless
+  // they grow.
   world.slab_crossing.release();
   NeighbourList<D>& old = world.old_rows;
   const std::size_t listed_before = L.other.size();
@@ -464,10 +465,10 @@ void build_neighbour_list(World<D>& world) {
   }
 
   // The old rows' arrays, the other threads' parts of the rows and the force arrays (given
-  // back for the build) would be mapped
-  // afresh at the next build and step: page faults that cost a small system up to a tenth of
-  // its run (docs/performance.md, "Memory"). Below kSmallBuildScratch both stay mapped; above
-  // it, the peak memory per grain rules and both go back to the system.
+  // back for the build) would be mapped afresh at the next build and step: page faults that
+  // cost a small system about a tenth of its run (docs/performance.md, "Threads"). Below
+  // kSmallBuildScratch all three stay mapped; above it the peak memory per grain rules and
+  // they go back to the system.
   std::size_t scratch =
       old.bytes() + n * (sizeof(typename Dim<D>::Vec) + sizeof(typename Dim<D>::Rot));
   for (const auto& part : world.list_parts)

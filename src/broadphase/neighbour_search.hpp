@@ -6,8 +6,8 @@
 
 namespace geodem {
 
-// A build's scratch (the old rows' copy, the force arrays) lighter than this stays mapped
-// between builds (world.keep_build_scratch).
+// A build's scratch (the old rows' copy, the threads' parts of the rows, the force arrays)
+// lighter than this stays mapped between builds (world.keep_build_scratch).
 constexpr std::size_t kSmallBuildScratch = std::size_t{8} << 20;
 
 // Rebuilds world.nlist from the current positions; keeps every listed pair's history.

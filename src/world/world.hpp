@@ -218,7 +218,7 @@ struct StepScratch {
   // Per-slab crossing contributions of the force stage and the automatic time step.
   mutable SlabCrossings<SlabCrossing<D>> slab_crossing;
   // A list build's copy of the old rows (their history), its parts of the rows and, while the
-  // build runs, the force arrays given back: kept mapped between builds while both together weigh
+  // build runs, the force arrays given back: kept mapped between builds while together they weigh
   // less than kSmallBuildScratch (broadphase/neighbour_search.cpp), given back otherwise.
   NeighbourList<D> old_rows;
   // A parallel build's rows of threads 1, 2, ... (thread 0 writes into the list itself).
