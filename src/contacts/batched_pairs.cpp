@@ -92,9 +92,13 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
   const PeriodicCell<D>& cell = world.cell;
   const double overlap_limit = world.overlap_limit;
 
-  // Zeroed once: the lanes a kernel computes beyond the batch's end then index grain 0 and
-  // pair 0, or an earlier contact.
+  // Set once: the lanes a kernel computes beyond the batch's end then index the slab's first
+  // grain and contact, or an earlier contact: data of this slab's task alone, which no other
+  // task writes meanwhile (another slab's grains may be moving, contacts/contact_forces.cpp).
   ContactBatch<D> batch{};
+  std::fill(std::begin(batch.i), std::end(batch.i), static_cast<std::int64_t>(first));
+  std::fill(std::begin(batch.j), std::end(batch.j), static_cast<std::int64_t>(first));
+  std::fill(std::begin(batch.k), std::end(batch.k), static_cast<std::int64_t>(start[first]));
   batch.overlap_limit = overlap_limit;
   const BatchGrains grains{as_doubles(P.pos.data()),
                            as_doubles(P.vel.data()),

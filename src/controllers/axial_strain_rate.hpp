@@ -12,6 +12,7 @@ class AxialStrainRate : public Controller<D> {
  public:
   AxialStrainRate(const LabBox<D>& box, int axis, double strain_rate)
       : box_(box), axis_(axis), rate_(strain_rate) {}
+  bool walls_only() const override { return true; }
   void apply(World<D>& w) override {
     auto& top = w.walls[box_.hi[axis_]];
     top.velocity = (rate_ * box_.size(w)[axis_]) * top.normal;  // the normal points inwards

@@ -47,6 +47,7 @@ class PlateServo : public Controller<D> {
   }
   void load_state(StateReader& in) override { in(target_), in(vmax_), in(sum_), in(stiffness_); }
 
+  bool walls_only() const override { return true; }
   void apply(World<D>& w) override {
     auto& wall = w.walls[wall_];
     // A plate that just lost its contacts (it rebounded, or the soil below it dilated and

@@ -40,6 +40,7 @@ class StressServo : public Controller<D> {
   void save_state(StateWriter& out) const override { out(target_), out(sum_); }
   void load_state(StateReader& in) override { in(target_), in(sum_); }
 
+  bool walls_only() const override { return true; }
   void apply(World<D>& w) override {
     const double sigma = box_.stress(w, axis_);
     const double area = box_.area(w, axis_);

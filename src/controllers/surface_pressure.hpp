@@ -24,6 +24,7 @@ class SurfacePressure : public Controller<D> {
   void save_state(StateWriter& out) const override { out(vmax_); }
   void load_state(StateReader& in) override { in(vmax_); }
 
+  bool walls_only() const override { return true; }
   void apply(World<D>& w) override {
     auto& wall = w.walls[wall_];
     double v;  // speed along the plate's normal, towards the grains

@@ -43,10 +43,10 @@ struct GrainArrays {
 // order). The options are template parameters so that the loop over the grains carries no test
 // of them.
 template <int D, bool Damped, bool Periodic, bool Track>
-double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t first) {
+double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t first,
+                   std::size_t last, bool parallel) {
   using Vec = typename Dim<D>::Vec;
   using Rot = typename Dim<D>::Rot;
-  const std::size_t n = world.particles.size();
   const double dt = world.dt, alpha = world.local_damping;
   const Vec g = world.gravity;
   // In a periodic cell, velocities are relative to the cell's affine field L x.
@@ -73,20 +73,70 @@ double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t f
     return A.vel[i].squaredNorm();
   };
   return extreme_over_indices<true>(
-      static_cast<std::ptrdiff_t>(n - first), world.threads, n - first >= kParallelMin, 0.0,
+      static_cast<std::ptrdiff_t>(last - first), world.threads, parallel, 0.0,
       [&](std::ptrdiff_t i) { return move(static_cast<std::ptrdiff_t>(first) + i); });
 }
 
-template <int D, bool Damped, bool Periodic>
-double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t first) {
-  return world.track_orientation ? move_grains<D, Damped, Periodic, true>(world, A, first)
-                                 : move_grains<D, Damped, Periodic, false>(world, A, first);
+// The grains [first, last) by the scalar loop, on threads where `parallel`; returns the
+// largest speed squared.
+template <int D>
+double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t first,
+                   std::size_t last, bool parallel) {
+  auto with = [&]<bool Damped, bool Periodic>() {
+    return world.track_orientation
+               ? move_grains<D, Damped, Periodic, true>(world, A, first, last, parallel)
+               : move_grains<D, Damped, Periodic, false>(world, A, first, last, parallel);
+  };
+  const bool damped = world.local_damping > 0.0;
+  if (world.cell.periodic)
+    return damped ? with.template operator()<true, true>()
+                  : with.template operator()<false, true>();
+  return damped ? with.template operator()<true, false>()
+                : with.template operator()<false, false>();
 }
 
-template <int D, bool Damped>
-double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t first) {
-  return world.cell.periodic ? move_grains<D, Damped, true>(world, A, first)
-                             : move_grains<D, Damped, false>(world, A, first);
+template <int D>
+GrainArrays<D> grain_arrays(World<D>& world) {
+  auto& P = world.particles;
+  if (world.track_orientation && P.orient.size() != P.size())
+    P.orient.resize(P.size(), Dim<D>::identity());
+  return GrainArrays<D>{P.pos.data(),         P.vel.data(),    P.angvel.data(),
+                        P.force.data(),       P.torque.data(), P.inv_mass.data(),
+                        P.inv_inertia.data(), P.flags.data(),  P.orient.data()};
+}
+
+// The vector move kernel of the step's instruction set where it applies (no periodic cell, no
+// orientations to track, AVX2 or AVX-512); null otherwise.
+template <int D>
+using MoveKernel = double (*)(const MoveConstants&, const MoveArrays&, std::size_t, std::size_t);
+template <int D>
+MoveKernel<D> vector_move(const World<D>& world) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  const ContactPath path = contact_path();
+  if (world.cell.periodic || world.track_orientation) return nullptr;
+  if (path == ContactPath::kAvx512) return &move_kernel_avx512<D>;
+  if (path == ContactPath::kAvx2) return &move_kernel_avx2<D>;
+#endif
+  (void)world;
+  return nullptr;
+}
+
+template <int D>
+MoveConstants move_constants(const World<D>& world) {
+  MoveConstants c;
+  c.dt = world.dt;
+  c.alpha = world.local_damping;
+  for (int k = 0; k < D; ++k) c.gravity[k] = world.gravity[k];
+  c.left_alone = kClumpMember | kGhost;
+  c.fixed = kFixed;
+  return c;
+}
+
+template <int D>
+MoveArrays move_arrays(const GrainArrays<D>& A) {
+  return MoveArrays{
+      as_doubles(A.pos),    as_doubles(A.vel), as_doubles(A.angvel), as_doubles(A.force),
+      as_doubles(A.torque), A.inv_mass,        A.inv_inertia,        A.flags};
 }
 
 // The whole blocks of grains by the move kernel of the step's instruction set
@@ -95,20 +145,10 @@ double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t f
 template <int D>
 std::size_t move_blocks(const World<D>& world, const GrainArrays<D>& A, double& vmax2) {
   vmax2 = 0.0;
-#if defined(__x86_64__) && defined(__GNUC__)
-  const ContactPath path = contact_path();
-  if (world.cell.periodic || world.track_orientation ||
-      (path != ContactPath::kAvx2 && path != ContactPath::kAvx512))
-    return 0;
-  MoveConstants c;
-  c.dt = world.dt;
-  c.alpha = world.local_damping;
-  for (int k = 0; k < D; ++k) c.gravity[k] = world.gravity[k];
-  c.left_alone = kClumpMember | kGhost;
-  c.fixed = kFixed;
-  const MoveArrays m{
-      as_doubles(A.pos),    as_doubles(A.vel), as_doubles(A.angvel), as_doubles(A.force),
-      as_doubles(A.torque), A.inv_mass,        A.inv_inertia,        A.flags};
+  const MoveKernel<D> kernel = vector_move(world);
+  if (kernel == nullptr) return 0;
+  const MoveConstants c = move_constants(world);
+  const MoveArrays m = move_arrays(A);
   const std::size_t n = world.particles.size(), whole = n - n % kMoveBlock;
   // The whole blocks by the force stage's slabs, in its fixed shares per thread
   // (base/slab_shares.hpp): a thread then moves mostly the grains whose forces it has just
@@ -125,34 +165,41 @@ std::size_t move_blocks(const World<D>& world, const GrainArrays<D>& A, double& 
   for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
     const std::size_t b = block_start(first), e = block_start(last);
     if (b >= e) return;
-    part[s] = path == ContactPath::kAvx512 ? move_kernel_avx512<D>(c, m, b, e)
-                                           : move_kernel_avx2<D>(c, m, b, e);
+    part[s] = kernel(c, m, b, e);
   });
   for (std::size_t s = 0; s < plan.count; ++s) vmax2 = std::max(vmax2, part[s]);
   return whole;
-#else
-  (void)world, (void)A;
-  return 0;
-#endif
 }
 
 }  // namespace
 
 template <int D>
+double move_grain_range(World<D>& world, std::size_t first, std::size_t last) {
+  const GrainArrays<D> A = grain_arrays(world);
+  double vmax2 = 0.0;
+  std::size_t from = first;
+  if (const MoveKernel<D> kernel = vector_move(world)) {
+    from = first + (last - first) / kMoveBlock * kMoveBlock;
+    if (from > first) vmax2 = kernel(move_constants(world), move_arrays(A), first, from);
+  }
+  return std::max(vmax2, move_grains(world, A, from, last, false));
+}
+
+template <int D>
 void integrate(World<D>& world) {
-  auto& P = world.particles;
-  const std::size_t n = P.size();
+  const std::size_t n = world.particles.size();
   const double dt = world.dt;
-  if (world.track_orientation && P.orient.size() != n) P.orient.resize(n, Dim<D>::identity());
-  const GrainArrays<D> arrays{P.pos.data(),         P.vel.data(),    P.angvel.data(),
-                              P.force.data(),       P.torque.data(), P.inv_mass.data(),
-                              P.inv_inertia.data(), P.flags.data(),  P.orient.data()};
   const bool periodic = world.cell.periodic;
   const typename Dim<D>::Tensor L = world.cell.vel_grad;
   double vmax2 = 0.0;
-  const std::size_t first = move_blocks(world, arrays, vmax2);
-  vmax2 = std::max(vmax2, world.local_damping > 0.0 ? move_grains<D, true>(world, arrays, first)
-                                                    : move_grains<D, false>(world, arrays, first));
+  if (world.grains_moved) {  // by the force stage, slab by slab
+    for (const double v : world.slab_vmax2) vmax2 = std::max(vmax2, v);
+    world.grains_moved = false;
+  } else {
+    const GrainArrays<D> arrays = grain_arrays(world);
+    const std::size_t first = move_blocks(world, arrays, vmax2);
+    vmax2 = std::max(vmax2, move_grains(world, arrays, first, n, n - first >= kParallelMin));
+  }
   vmax2 = std::max(vmax2, integrate_clumps(world));
   // Bound on how far any grain moved since the neighbour list was checked (spar nodes
   // are checked exactly, like walls: they are few).
@@ -175,6 +222,8 @@ void move_walls(World<D>& world) {
   }
 }
 
+template double move_grain_range<2>(World<2>&, std::size_t, std::size_t);
+template double move_grain_range<3>(World<3>&, std::size_t, std::size_t);
 template void integrate<2>(World<2>&);
 template void integrate<3>(World<3>&);
 template void move_walls<2>(World<2>&);

@@ -11,6 +11,12 @@ namespace geodem {
 template <int D>
 void integrate(World<D>& world);
 
+// Moves the grains [first, last) by one step, on the calling thread, as integrate() moves them
+// (the same bits on every instruction set); returns their largest speed squared. For the force
+// stage, which moves each slab once its forces are complete (world.move_in_force_stage).
+template <int D>
+double move_grain_range(World<D>& world, std::size_t first, std::size_t last);
+
 // Moves walls with their velocity (after the grains, same step).
 template <int D>
 void move_walls(World<D>& world);

@@ -116,6 +116,22 @@ bool list_expired(World<D>& world) {
   return expired(world.disp_bound + world.radius_growth);
 }
 
+// Whether the force stage may move each slab's grains as soon as its forces are complete
+// (contacts/contact_forces.cpp), instead of a pass of their own after the controllers: when
+// nothing between the two adds to a grain's force or reads a grain (no spar chain, no clump, no
+// decomposed domain, no periodic cell whose stress a servo reads, no orientation to track, and
+// controllers of walls alone). The grains then move in cache, with one parallel region less a
+// step; the same bits either way.
+template <int D>
+bool may_move_in_force_stage(const World<D>& world) {
+  if (!world.spars.empty() || !world.particles.clump.empty() || world.domain ||
+      world.cell.periodic || world.track_orientation)
+    return false;
+  for (const auto& c : world.controllers)
+    if (!c->walls_only()) return false;
+  return true;
+}
+
 }  // namespace
 
 template <int D>
@@ -298,7 +314,9 @@ void step(World<D>& world) {
     ScopedStage<D> t(world, Stage::kContactForces);
     // (the contact stage sets every grain's force and torque: no pass of its own zeroes them)
     update_collision_shares(world);
+    world.move_in_force_stage = may_move_in_force_stage(world);
     compute_contact_forces(world);
+    world.move_in_force_stage = false;
     compute_spar_contacts(world);
     if (world.overlap_offender >= 0 || world.overlap_elsewhere) {
       const std::string here = world.overlap_offender >= 0 ? overlap_message(world) : "";

@@ -44,6 +44,10 @@ class Controller {
   // Wall `index` is being removed (world/world_editing.hpp): a controller of that wall
   // answers true and is dropped; one of a later wall renumbers it.
   virtual bool wall_removed(std::size_t /*index*/) { return false; }
+  // True when apply() reads nothing of the grains and changes nothing but walls and its own
+  // state: the step may then move the grains before it runs (world/step.cpp; never in a
+  // periodic cell, whose stress a servo reads).
+  virtual bool walls_only() const { return false; }
 };
 
 enum class Stage : int {
@@ -227,6 +231,11 @@ struct StepScratch {
   };
   std::vector<ListPart> list_parts;
   bool keep_build_scratch = false;
+  // The step asks the force stage to move each slab's grains as soon as their forces are
+  // complete (world/step.cpp says when it may); the stage then notes each slab's largest speed
+  // squared and that it moved them, for the integration to skip its own move.
+  bool move_in_force_stage = false, grains_moved = false;
+  std::vector<double> slab_vmax2;
   // Each clump's members in grain order, remade after each neighbour-list build (grains are
   // renumbered there) or when the counts changed: the clump integration sums them clump by
   // clump, on several threads, in the order of the grains.

@@ -6,11 +6,13 @@
 // is updated every 10 steps. One variant carries rolling springs and bonds (the force
 // stage's other instantiation). A sheared periodic cell of colliding grains takes the
 // cell's path: its parallel search, renumbering in the cell, and the cell's sums. A crowd
-// of three-grain clumps thrown together takes the clump integration's parallel loops.
+// of three-grain clumps thrown together takes the clump integration's parallel loops. The
+// grains moved slab by slab in the force stage give the bits of the move's own pass.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 #include <random>
 
 #include "base/parallel.hpp"
@@ -33,9 +35,24 @@ World<D> make_packing(bool extras, int threads) {
   return w;
 }
 
+// A controller that changes nothing and counts the steps on which the force stage had already
+// moved the grains when it ran (world/step.cpp); one of grains (not walls_only) forbids that.
 template <int D>
-World<D> run(bool extras, int threads) {
+class MoveProbe : public Controller<D> {
+ public:
+  MoveProbe(bool walls_only, int& moved) : walls_only_(walls_only), moved_(moved) {}
+  void apply(World<D>& w) override { moved_ += w.grains_moved ? 1 : 0; }
+  bool walls_only() const override { return walls_only_; }
+
+ private:
+  bool walls_only_;
+  int& moved_;
+};
+
+template <int D>
+World<D> run(bool extras, int threads, std::shared_ptr<Controller<D>> probe = nullptr) {
   World<D> w = make_packing<D>(extras, threads);
+  if (probe) w.controllers.push_back(probe);
   for (int k = 0; k < 400; ++k) {
     if (k == 100) w.walls[2].velocity = vec<D>(0.05, 0.0, 0.0);  // the floor slides
     w.measure_this_step = k % 25 == 0;
@@ -81,6 +98,24 @@ TYPED_TEST(ThreadDeterminism, OneTwoAndThreeThreadsGiveTheSameBits) {
       EXPECT_GT(one.broken_bonds, 0u);
     }
     for (int threads : {2, 3}) expect_identical(one, run<D>(extras, threads), threads);
+  }
+}
+
+TYPED_TEST(ThreadDeterminism, MovingGrainsInTheForceStageGivesTheSameBits) {
+  // The step moves each slab's grains as soon as their forces are complete when only wall
+  // controllers run in between; a controller of grains makes it move them in a pass of their
+  // own after the controllers. The same bits either way, on any thread count.
+  constexpr int D = TypeParam::value;
+  for (bool extras : {false, true}) {
+    SCOPED_TRACE(extras ? "rolling springs and bonds" : "frictional");
+    for (int threads : {1, 3}) {
+      int early = 0, late = 0;
+      const World<D> fused = run<D>(extras, threads, std::make_shared<MoveProbe<D>>(true, early));
+      const World<D> apart = run<D>(extras, threads, std::make_shared<MoveProbe<D>>(false, late));
+      EXPECT_EQ(early, 400);  // moved in the force stage on every step
+      EXPECT_EQ(late, 0);
+      expect_identical(apart, fused, threads);
+    }
   }
 }
 
