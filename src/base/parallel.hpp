@@ -215,16 +215,6 @@ class SlabCrossings {
     for (std::size_t s = 0; s < slabs_; ++s)
       for (const Entry& e : buckets_[s * width + target]) add(e);
   }
-  // The same for a grain slab, reading only the sources before it for which reaches(source)
-  // holds: while other slabs' tasks still run, a source that cannot reach the target may be
-  // clearing its buckets (a source's entries only ever go to later slabs).
-  template <typename Reaches, typename Add>
-  void apply_to(std::size_t target, Reaches&& reaches, Add&& add) const {
-    const std::size_t width = slabs_ + 1;
-    for (std::size_t s = 0; s < target; ++s)
-      if (reaches(s))
-        for (const Entry& e : buckets_[s * width + target]) add(e);
-  }
   // Gives the memory back (before a neighbour-list build, whose peak it would add to).
   void release() { std::vector<std::vector<Entry>>().swap(buckets_); }
 

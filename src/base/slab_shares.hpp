@@ -56,37 +56,12 @@ inline bool claim(Share& s, bool from_back, std::uint32_t& item) {
 // Shares kept on the stack; more threads than this fall back to a dynamic schedule.
 constexpr int kMaxShares = 64;
 
-// Runs run(t, k) once for every item k of every share t in [0, shares) (shares <= kMaxShares),
-// share t holding the items [begin(t), begin(t + 1)) (begin(0) = 0, nondecreasing, below 2^32).
-// Thread t of a team of T runs shares t, t + T, ... front to back (all of them when OpenMP gives
-// one thread), then takes items from the backs of the others.
-template <typename Begin, typename Run>
-void run_share_ranges(int shares, Begin&& begin, Run&& run) {
-  using shares_detail::claim;
-  shares_detail::Share share[kMaxShares];
-  for (int t = 0; t < shares; ++t)
-    share[t].range.store(shares_detail::pack(begin(t), begin(t + 1)), std::memory_order_relaxed);
-#pragma omp parallel num_threads(shares)
-  {
-    int t = 0, team = 1;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-    team = omp_get_num_threads();
-#endif
-    std::uint32_t k = 0;
-    for (int s = t; s < shares; s += team)
-      while (claim(share[s], false, k)) run(s, std::size_t{k});
-    for (int d = 1; d < shares; ++d) {
-      const int s = (t + d) % shares;
-      while (claim(share[s], true, k)) run(s, std::size_t{k});
-    }
-  }
-}
-
 // Runs run(k) once for every k in [0, n) (n < 2^32) on up to `threads` threads. Share t is
-// the t-th of `threads` contiguous ranges of about n / threads items.
+// the t-th of `threads` contiguous ranges of about n / threads items; thread t of a team of T
+// runs shares t, t + T, ... (all of them when OpenMP gives one thread), then helps the others.
 template <typename Run>
 void run_in_shares(std::size_t n, int threads, Run&& run) {
+  using shares_detail::claim;
   if (threads <= 1 || n < 2) {
     for (std::size_t k = 0; k < n; ++k) run(k);
     return;
@@ -97,10 +72,26 @@ void run_in_shares(std::size_t n, int threads, Run&& run) {
       run(static_cast<std::size_t>(k));
     return;
   }
+  shares_detail::Share share[kMaxShares];
   const auto count = static_cast<std::size_t>(threads);
-  run_share_ranges(
-      threads, [n, count](int t) { return n * static_cast<std::size_t>(t) / count; },
-      [&run](int, std::size_t k) { run(k); });
+  for (std::size_t t = 0; t < count; ++t)
+    share[t].range.store(shares_detail::pack(n * t / count, n * (t + 1) / count),
+                         std::memory_order_relaxed);
+#pragma omp parallel num_threads(threads)
+  {
+    int t = 0, team = 1;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+    team = omp_get_num_threads();
+#endif
+    std::uint32_t k = 0;
+    for (int s = t; s < threads; s += team)
+      while (claim(share[s], false, k)) run(k);
+    for (int d = 1; d < threads; ++d) {
+      const int s = (t + d) % threads;
+      while (claim(share[s], true, k)) run(k);
+    }
+  }
 }
 
 }  // namespace geodem

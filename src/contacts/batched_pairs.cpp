@@ -93,8 +93,8 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
   const double overlap_limit = world.overlap_limit;
 
   // Set once: the lanes a kernel computes beyond the batch's end then index the slab's first
-  // grain and contact, or an earlier contact: data of this slab's task alone, which no other
-  // task writes meanwhile (another slab's grains may be moving, contacts/contact_forces.cpp).
+  // grain and contact, or an earlier contact of the slab: data of this slab's task alone (grain
+  // 0 and pair 0 belong to the first slab's task, which may be writing pair 0's spring).
   ContactBatch<D> batch{};
   std::fill(std::begin(batch.i), std::end(batch.i), static_cast<std::int64_t>(first));
   std::fill(std::begin(batch.j), std::end(batch.j), static_cast<std::int64_t>(first));

@@ -6,9 +6,8 @@
 // length depends only on the grain count. The slabs run side by side; each runs its
 // rows in index order. A force on a grain of the same slab is added at once; a force
 // on a grain of a later slab (its index is higher) is kept in the slab's bucket for that
-// later slab; a slab adds its buckets from earlier slabs, in source-slab order, once those
-// slabs are done (SlabCrossings, base/parallel.hpp; the two phases run in one parallel
-// region, base/slab_phases.hpp), then its wall contacts. Every grain
+// later slab; the buckets are added afterwards, target slabs side by side, each target's
+// in source-slab order (SlabCrossings, base/parallel.hpp). Every grain
 // thus sums its forces in one fixed order: first those from its own slab's rows (by
 // row), then those from earlier slabs (by slab, then row). Pairs listed but apart add
 // nothing, so the list's skin and rebuilds do not change the order either. Sums over
@@ -18,9 +17,7 @@
 
 #include <algorithm>
 
-#include "base/index_max.hpp"
 #include "base/parallel.hpp"
-#include "base/slab_phases.hpp"
 #include "contacts/batched_pairs.hpp"
 #include "contacts/contact_batch.hpp"
 #include "contacts/contact_law.hpp"
@@ -229,86 +226,71 @@ void exact_cell_fabric_of_grains(const World<D>& world, std::size_t first, std::
   }
 }
 
-// The slab's grain-grain contacts (phase one). The slab's forces start from zero here, in the
-// task that adds to them first (a pass of its own was one more parallel region a step).
 template <int D, bool Measure, bool Extras, bool Periodic>
-void slab_pairs(World<D>& world, std::size_t s, std::size_t first, std::size_t last,
-                SlabTally<D>& tally, bool batched, bool one_law) {
-  auto& P = world.particles;
-  auto& crossing = world.slab_crossing;
-  std::fill(P.force.begin() + static_cast<std::ptrdiff_t>(first),
-            P.force.begin() + static_cast<std::ptrdiff_t>(last), Dim<D>::Vec::Zero());
-  std::fill(P.torque.begin() + static_cast<std::ptrdiff_t>(first),
-            P.torque.begin() + static_cast<std::ptrdiff_t>(last), Dim<D>::zero_rot());
-  if constexpr (!Extras) {
-    if (batched) {
-      batched_pair_rows<D, Measure, Periodic>(world, first, last, tally, crossing.slab(s), one_law);
-      return;
-    }
-  }
-  pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally, crossing.slab(s));
-}
-
-// What is left of slab s's grains once the slabs whose pairs reach it are done (phase two): the
-// forces from pairs of earlier slabs (SlabCrossings, in source-slab order), then in a periodic
-// cell the slab's part of the sum of x F^T (the grains' forces then hold their pair contacts
-// alone), then the wall contacts. (The crossings' extra target, bodies numbered from the grain
-// count up, stays empty here: every partner of a grain-grain pair is a grain.)
-template <int D, bool Measure, bool Extras, bool Periodic>
-void finish_slab(World<D>& world, std::size_t s, std::size_t first, std::size_t last,
-                 SlabTally<D>& tally, const SlabProgress& progress, bool planes) {
-  auto& P = world.particles;
-  world.slab_crossing.apply_to(
-      s, [&](std::size_t a) { return progress.reach(a) >= s; },
-      [&P](const SlabCrossing<D>& c) {
-        P.force[c.body] += c.a;
-        P.torque[c.body] += c.b;
-      });
-  // (a decomposed cell's plain sum would be replaced by its exact one: not taken)
-  if constexpr (Periodic) {
-    if (world.domain)
-      exact_cell_fabric_of_grains(world, first, last, tally);
-    else if constexpr (kFabricByGrain<D>)
-      cell_fabric_of_grains(world, first, last, tally);
-  }
-  if (!world.walls.empty()) wall_rows<D, Measure, Extras>(world, first, last, tally, planes);
-  // The slab's forces are complete, and every task that reads its grains' positions is done:
-  // the pairs of slabs that reach it (waited for) and its own. Move them while in cache.
-  if (world.move_in_force_stage) world.slab_vmax2[s] = move_grain_range(world, first, last);
-}
-
-// Both phases over the slabs in one region (base/slab_phases.hpp). A slab's reach: the slab of
-// the highest partner in its rows (a pair's partner always has the higher index). Each grain
-// gets its additions in the order a pass of all pairs, then a pass of all finishes gave.
-template <int D, bool Measure, bool Extras, bool Periodic>
-void pairs_and_finish(World<D>& world, std::vector<SlabTally<D>>& tallies) {
-  static thread_local SlabProgress kept;  // (kept: the step allocates nothing)
-  SlabProgress& progress = kept;          // (in the region, the thread-local's name is per thread)
+void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
   SlabTally<D>* tally = tallies.data();
+  auto& crossing = world.slab_crossing;
   const SlabPlan plan = world.slab_plan(world.particles.size());
-  world.slab_crossing.prepare(plan);
+  crossing.prepare(plan);
   // Contacts without extras run in batches unless the scalar loop is asked for.
   const bool batched = contact_path() != ContactPath::kScalar && batch_kernel_has(world.pair_laws);
   // (the vector gather pass runs outside a periodic cell only: no scan there)
   const bool one_law = batched && !Extras && !Periodic && grains_of_one_material(world);
+  auto& P = world.particles;
+  for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
+    // The slab's forces start from zero here, in the task that adds to them first (a pass of
+    // its own was one more parallel region a step).
+    std::fill(P.force.begin() + static_cast<std::ptrdiff_t>(first),
+              P.force.begin() + static_cast<std::ptrdiff_t>(last), Dim<D>::Vec::Zero());
+    std::fill(P.torque.begin() + static_cast<std::ptrdiff_t>(first),
+              P.torque.begin() + static_cast<std::ptrdiff_t>(last), Dim<D>::zero_rot());
+    if constexpr (!Extras) {
+      if (batched) {
+        batched_pair_rows<D, Measure, Periodic>(world, first, last, tally[s], crossing.slab(s),
+                                                one_law);
+        return;
+      }
+    }
+    pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally[s], crossing.slab(s));
+  });
+}
+
+// What is left of slab s's grains once every slab's pairs are done, all in one pass over the
+// slabs (one parallel region, where four passes had one each): the forces from pairs of
+// earlier slabs (SlabCrossings, in source-slab order), then in a periodic cell the slab's part
+// of the sum of x F^T (the grains' forces then hold their pair contacts alone), then the wall
+// contacts, then, when the step asks for it (world/step.cpp), the grains' move. Each grain gets its
+// additions in the order the three passes gave. (The crossings' extra target, bodies numbered from
+// the grain count up, stays empty here: every partner of a grain-grain pair is a grain.)
+template <int D, bool Measure, bool Extras, bool Periodic>
+void finish_slabs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
+  auto& P = world.particles;
+  auto& crossing = world.slab_crossing;
+  const SlabPlan plan = world.slab_plan(P.size());
+  const bool walls = !world.walls.empty();
   const bool planes = walls_by_plane_passes(world, Measure, Extras);
-  const std::uint32_t* start = world.nlist.start.data();
-  const std::uint32_t* other = world.nlist.other.data();
-  if (world.move_in_force_stage) world.slab_vmax2.assign(plan.count, 0.0);
-  run_slab_phases(
-      plan.count, world.threads, plan.n >= kParallelMin, progress,
-      [&](std::size_t s) {
-        const std::size_t first = plan.first(s), last = plan.last(s);
-        const std::uint32_t top = max_index(other + start[first], start[last] - start[first],
-                                            static_cast<std::uint32_t>(first));
-        progress.announce(s, plan.slab_of(top));
-        slab_pairs<D, Measure, Extras, Periodic>(world, s, first, last, tally[s], batched, one_law);
-      },
-      [&](std::size_t s) {
-        finish_slab<D, Measure, Extras, Periodic>(world, s, plan.first(s), plan.last(s), tally[s],
-                                                  progress, planes);
-      });
-  world.grains_moved = world.move_in_force_stage;
+  SlabTally<D>* tally = tallies.data();
+  const bool move = world.move_in_force_stage;
+  if (move) world.slab_vmax2.assign(plan.count, 0.0);
+  double* vmax2 = world.slab_vmax2.data();
+  for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
+    crossing.apply_to(s, [&P](const SlabCrossing<D>& c) {
+      P.force[c.body] += c.a;
+      P.torque[c.body] += c.b;
+    });
+    // (a decomposed cell's plain sum would be replaced by its exact one: not taken)
+    if constexpr (Periodic) {
+      if (world.domain)
+        exact_cell_fabric_of_grains(world, first, last, tally[s]);
+      else if constexpr (kFabricByGrain<D>)
+        cell_fabric_of_grains(world, first, last, tally[s]);
+    }
+    if (walls) wall_rows<D, Measure, Extras>(world, first, last, tally[s], planes);
+    // The slab's forces are complete and every pair is done (the only tasks that read other
+    // slabs' grains): when the step allows it, move the slab's grains while in cache.
+    if (move) vmax2[s] = move_grain_range(world, first, last);
+  });
+  world.grains_moved = move;
 }
 
 }  // namespace
@@ -377,9 +359,14 @@ void compute_contact_forces(World<D>& world) {
   // One instantiation per combination, so that a plain packing pays for no option.
   auto run = [&]<bool Measure, bool Extras>() {
     if (world.cell.periodic) {
-      pairs_and_finish<D, Measure, Extras, true>(world, tallies);
+      grain_pairs<D, Measure, Extras, true>(world, tallies);
     } else {
-      pairs_and_finish<D, Measure, Extras, false>(world, tallies);
+      grain_pairs<D, Measure, Extras, false>(world, tallies);
+    }
+    if (world.cell.periodic) {
+      finish_slabs<D, Measure, Extras, true>(world, tallies);
+    } else {
+      finish_slabs<D, Measure, Extras, false>(world, tallies);
     }
   };
   const bool extras = world.contact_extras;
