@@ -95,11 +95,10 @@ double move_grains(const World<D>& world, const GrainArrays<D>& A, std::size_t f
                 : with.template operator()<false, false>();
 }
 
+// (P.orient is sized by integrate() before it is read: the force stage's move never tracks.)
 template <int D>
 GrainArrays<D> grain_arrays(World<D>& world) {
   auto& P = world.particles;
-  if (world.track_orientation && P.orient.size() != P.size())
-    P.orient.resize(P.size(), Dim<D>::identity());
   return GrainArrays<D>{P.pos.data(),         P.vel.data(),    P.angvel.data(),
                         P.force.data(),       P.torque.data(), P.inv_mass.data(),
                         P.inv_inertia.data(), P.flags.data(),  P.orient.data()};
@@ -143,7 +142,7 @@ MoveArrays move_arrays(const GrainArrays<D>& A) {
 // (integrate/move_kernel.hpp) where it applies; returns how many grains it moved (the rest
 // go through the scalar loop) and the largest speed squared among them.
 template <int D>
-std::size_t move_blocks(const World<D>& world, const GrainArrays<D>& A, double& vmax2) {
+std::size_t move_blocks(World<D>& world, const GrainArrays<D>& A, double& vmax2) {
   vmax2 = 0.0;
   const MoveKernel<D> kernel = vector_move(world);
   if (kernel == nullptr) return 0;
@@ -156,9 +155,8 @@ std::size_t move_blocks(const World<D>& world, const GrainArrays<D>& A, double& 
   // slabs as often as not: on two threads of a 2-vCPU VM one half took twice the other's
   // time.) A block goes with the slab of its first grain. One term of the maximum per slab.
   const SlabPlan plan = world.slab_plan(n);
-  static thread_local std::vector<double> slab_vmax2;
-  slab_vmax2.assign(plan.count, 0.0);
-  double* part = slab_vmax2.data();  // (in the region, the thread-local's name is per thread)
+  world.slab_vmax2.assign(plan.count, 0.0);
+  double* part = world.slab_vmax2.data();
   auto block_start = [whole](std::size_t i) {
     return std::min(whole, (i + kMoveBlock - 1) / kMoveBlock * kMoveBlock);
   };
@@ -196,6 +194,8 @@ void integrate(World<D>& world) {
     for (const double v : world.slab_vmax2) vmax2 = std::max(vmax2, v);
     world.grains_moved = false;
   } else {
+    auto& P = world.particles;
+    if (world.track_orientation && P.orient.size() != n) P.orient.resize(n, Dim<D>::identity());
     const GrainArrays<D> arrays = grain_arrays(world);
     const std::size_t first = move_blocks(world, arrays, vmax2);
     vmax2 = std::max(vmax2, move_grains(world, arrays, first, n, n - first >= kParallelMin));

@@ -13,7 +13,8 @@ void integrate(World<D>& world);
 
 // Moves the grains [first, last) by one step, on the calling thread, as integrate() moves them
 // (the same bits on every instruction set); returns their largest speed squared. For the force
-// stage, which moves each slab once its forces are complete (world.move_in_force_stage).
+// stage, which moves each slab once its forces are complete (world.move_in_force_stage), never
+// with tracked orientations (world/step.cpp).
 template <int D>
 double move_grain_range(World<D>& world, std::size_t first, std::size_t last);
 

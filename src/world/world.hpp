@@ -232,8 +232,8 @@ struct StepScratch {
   std::vector<ListPart> list_parts;
   bool keep_build_scratch = false;
   // The step asks the force stage to move each slab's grains as soon as their forces are
-  // complete (world/step.cpp says when it may); the stage then notes each slab's largest speed
-  // squared and that it moved them, for the integration to skip its own move.
+  // complete (world/step.cpp says when it may); the stage then notes that it moved them, for
+  // the integration to skip its own move. Either move keeps each slab's largest speed squared.
   bool move_in_force_stage = false, grains_moved = false;
   std::vector<double> slab_vmax2;
   // Each clump's members in grain order, remade after each neighbour-list build (grains are
