@@ -92,10 +92,10 @@ T ordered_sum(std::size_t n, int threads, const T& zero, Term&& term) {
 // short enough for 32 slabs to share among threads.
 // A caller may fix the length instead (`fixed` > 0), or give the slabs' starts (SlabPlan).
 constexpr std::size_t kMinSlab = 1024;
-// Slabs go to threads from two slabs on: a slab's contacts are work enough for a region's
-// cost (a 2D pull-out of 3,844 grains: its contact forces 1.26 times faster on two threads),
-// where the per-grain loops of for_each_index keep kParallelMin (that pull-out's integration
-// with clumps ran 1.3 times slower on two threads).
+// Slabs (for_slabs, SlabCrossings::apply) go to threads from two slabs on: a slab's contacts
+// are work enough for a region's cost, where the loops of for_each_index keep kParallelMin
+// (lowered with them, a 2D pull-out's clump integration ran slower on two threads than on
+// one: docs/performance.md).
 constexpr std::size_t kParallelSlabsMin = 2 * kMinSlab;
 inline std::size_t slab_length(std::size_t n, std::size_t fixed = 0) {
   return fixed > 0 ? fixed : std::max<std::size_t>(kMinSlab, (n + 31) / 32);
