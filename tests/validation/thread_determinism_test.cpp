@@ -7,7 +7,8 @@
 // stage's other instantiation). A sheared periodic cell of colliding grains takes the
 // cell's path: its parallel search, renumbering in the cell, and the cell's sums. A crowd
 // of three-grain clumps thrown together takes the clump integration's parallel loops. The
-// grains moved slab by slab in the force stage give the bits of the move's own pass.
+// grains moved slab by slab in the force stage give the bits of the move's own pass. A
+// smaller packing runs its slabs on threads and its per-grain loops on one.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,8 +30,8 @@ class ThreadDeterminism : public ::testing::Test {};
 TYPED_TEST_SUITE(ThreadDeterminism, Dims, DimNames);
 
 template <int D>
-World<D> make_packing(bool extras, int threads) {
-  World<D> w = pressed_packing<D>(extras, 12000, D == 2 ? 100 : 22, 40.0, 11);
+World<D> make_packing(bool extras, int threads, std::size_t n = 12000) {
+  World<D> w = pressed_packing<D>(extras, n, D == 2 ? 100 : 22, 40.0, 11);
   w.threads = threads;
   return w;
 }
@@ -50,8 +51,9 @@ class MoveProbe : public Controller<D> {
 };
 
 template <int D>
-World<D> run(bool extras, int threads, std::shared_ptr<Controller<D>> probe = nullptr) {
-  World<D> w = make_packing<D>(extras, threads);
+World<D> run(bool extras, int threads, std::shared_ptr<Controller<D>> probe = nullptr,
+             std::size_t n = 12000) {
+  World<D> w = make_packing<D>(extras, threads, n);
   if (probe) w.controllers.push_back(probe);
   for (int k = 0; k < 400; ++k) {
     if (k == 100) w.walls[2].velocity = vec<D>(0.05, 0.0, 0.0);  // the floor slides
@@ -99,6 +101,21 @@ TYPED_TEST(ThreadDeterminism, OneTwoAndThreeThreadsGiveTheSameBits) {
     }
     for (int threads : {2, 3}) expect_identical(one, run<D>(extras, threads), threads);
   }
+}
+
+TYPED_TEST(ThreadDeterminism, SlabsOnThreadsWithSerialGrainLoopsGiveTheSameBits) {
+  // Between kParallelSlabsMin and kParallelMin grains the force stage's slabs and the crossing
+  // forces go to threads while the per-grain loops stay on one: the mixed path of a 2D pull-out.
+  constexpr int D = TypeParam::value;
+  if (!built_with_openmp()) GTEST_SKIP() << "built without OpenMP";
+  constexpr std::size_t n = 3000;
+  static_assert(n >= kParallelSlabsMin && n < kParallelMin);
+  const World<D> one = run<D>(false, 1, nullptr, n);
+  ASSERT_EQ(one.particles.size(), n);
+  EXPECT_GE(one.nlist.builds, 4u);
+  // The grains press on each other (the 3D bed is six layers deep: half a contact a grain).
+  EXPECT_GT(2 * one.stats.contacts, one.particles.size());
+  for (int threads : {2, 3}) expect_identical(one, run<D>(false, threads, nullptr, n), threads);
 }
 
 TYPED_TEST(ThreadDeterminism, MovingGrainsInTheForceStageGivesTheSameBits) {
