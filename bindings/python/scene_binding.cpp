@@ -15,6 +15,7 @@
 #include "measure/displacement.hpp"
 #include "measure/measurements.hpp"
 #include "scene/build_scene.hpp"
+#include "scene/input_overlaps.hpp"
 #include "scene/scene_start.hpp"
 #include "world/step.hpp"
 #include "world/world_editing.hpp"
@@ -298,18 +299,21 @@ void bind(py::module_& m, const char* name) {
             // Overlaps the step would stop at are an input error naming the grains, as for
             // the scenario's [[particles]].
             std::vector<Sphere<D>> all = spheres_of<D>(w.particles);
-            std::vector<std::string> source;
-            for (std::size_t i = 0; i < w.particles.size(); ++i)
-              source.push_back("the grain of id " + std::to_string(w.particles.id[i]));
+            const std::size_t before = w.particles.size();
             for (py::ssize_t i = 0; i < n; ++i) {
               const double r = radii.data()[i];
               if (!(r > 0.0)) throw py::value_error("radii must be positive");
               Vec x;
               for (int k = 0; k < D; ++k) x[k] = positions.data()[i * D + k];
               all.push_back({x, r});
-              source.push_back("positions[" + std::to_string(i) + "]");
             }
-            reject_input_overlaps<D>(all, source, w.overlap_limit, "<python>");
+            reject_input_overlaps<D>(
+                all,
+                [&](std::size_t k) {
+                  return k < before ? "the grain of id " + std::to_string(w.particles.id[k])
+                                    : "positions[" + std::to_string(k - before) + "]";
+                },
+                w.overlap_limit, "<python>");
             for (py::ssize_t i = 0; i < n; ++i) {
               Vec v = Vec::Zero();
               for (int k = 0; k < D && !velocities.is_none(); ++k) v[k] = vel.data()[i * D + k];

@@ -138,6 +138,11 @@ struct SlabPlan {
   }
 };
 
+// Whether for_slabs hands the slabs to threads (else no region: for_each_index).
+inline bool slabs_on_threads(const SlabPlan& plan, int threads) {
+  return threads > 1 && plan.count >= 2 && plan.n >= kParallelSlabsMin;
+}
+
 // Runs body(slab, first, last) for every slab of the plan, side by side.
 template <typename Body>
 void for_slabs(const SlabPlan& plan, int threads, Body&& body) {
@@ -146,7 +151,7 @@ void for_slabs(const SlabPlan& plan, int threads, Body&& body) {
     const auto slab = static_cast<std::size_t>(s);
     body(slab, plan.first(slab), plan.last(slab));
   };
-  if (threads > 1 && ns >= 2 && plan.n >= kParallelSlabsMin) {  // (else no region: for_each_index)
+  if (slabs_on_threads(plan, threads)) {
     run_in_shares(plan.count, threads, [&](std::size_t s) { run(static_cast<std::ptrdiff_t>(s)); });
     return;
   }
@@ -162,9 +167,13 @@ void for_slabs(const SlabPlan& plan, int threads, Body&& body) {
 // slabs, as in a wide, flat bed.)
 template <typename Entry>  // an Entry has a field `body`
 class SlabCrossings {
+  static constexpr std::size_t kFirstBlock = (std::size_t{256} << 10) / sizeof(Entry) + 1;
+
  public:
   // Buckets for n grains; their contents are left to the slabs' tasks to clear.
-  void prepare(const SlabPlan& plan) {
+  void prepare(const SlabPlan& plan, int threads) {
+    // Writers on threads must not share the spare blocks (recycle): none are left to them.
+    if (slabs_on_threads(plan, threads)) spare_.clear();
     plan_ = plan;
     slabs_ = plan.count;
     if (buckets_.size() < slabs_ * (slabs_ + 1)) buckets_.resize(slabs_ * (slabs_ + 1));
@@ -178,12 +187,27 @@ class SlabCrossings {
       const std::size_t target = b >= plan_->n                 ? slabs_
                                  : b - next_first_ < next_len_ ? next_
                                                                : plan_->slab_of(b);
-      bucket_[target].push_back(e);
+      std::vector<Entry>& bucket = bucket_[target];
+      if (bucket.size() == bucket.capacity()) [[unlikely]] {
+        // An empty bucket takes the block of one that recycle() emptied, if any (slabs run
+        // one after the other only: on threads nothing is recycled, so nothing shared is
+        // written here). A fresh block is large enough for the allocator to map it apart from
+        // the heap (the command line sets a 256 kB threshold), so that release() gives its
+        // pages back; pages that no entry reached are never touched, so never resident.
+        if (bucket.capacity() == 0 && !spare_->empty()) {
+          bucket.swap(spare_->back());
+          spare_->pop_back();
+        } else {
+          bucket.reserve(std::max(kFirstBlock, 2 * bucket.capacity()));
+        }
+      }
+      bucket.push_back(e);
     }
 
    private:
     friend class SlabCrossings;
     std::vector<Entry>* bucket_;
+    std::vector<std::vector<Entry>>* spare_;
     const SlabPlan* plan_;
     std::size_t slabs_;
     std::size_t next_, next_first_, next_len_;  // the slab after the writer's, its first body
@@ -191,6 +215,7 @@ class SlabCrossings {
   Writer slab(std::size_t s) {
     Writer w;
     w.bucket_ = buckets_.data() + s * (slabs_ + 1);
+    w.spare_ = &spare_;
     for (std::size_t t = 0; t <= slabs_; ++t) w.bucket_[t].clear();
     w.plan_ = &plan_, w.slabs_ = slabs_;
     // For the last slab there is no next one: bodies from n up go to slabs_.
@@ -220,11 +245,28 @@ class SlabCrossings {
     for (std::size_t s = 0; s < slabs_; ++s)
       for (const Entry& e : buckets_[s * width + target]) add(e);
   }
+  // Once target slab t's entries are added (slabs run one after the other), its buckets'
+  // blocks go to the buckets that the later slabs fill: the crossings of about one slab are
+  // resident at a time, not those of the whole step.
+  void recycle(std::size_t target) {
+    const std::size_t width = slabs_ + 1;
+    for (std::size_t s = 0; s < slabs_ && s < target; ++s) {
+      std::vector<Entry>& b = buckets_[s * width + target];
+      if (b.capacity() == 0) continue;
+      b.clear();
+      spare_.emplace_back();
+      spare_.back().swap(b);
+    }
+  }
   // Gives the memory back (before a neighbour-list build, whose peak it would add to).
-  void release() { std::vector<std::vector<Entry>>().swap(buckets_); }
+  void release() {
+    std::vector<std::vector<Entry>>().swap(buckets_);
+    std::vector<std::vector<Entry>>().swap(spare_);
+  }
 
  private:
   std::vector<std::vector<Entry>> buckets_;  // source-major: [s * (slabs + 1) + target]
+  std::vector<std::vector<Entry>> spare_;    // emptied blocks (recycle)
   SlabPlan plan_;                            // its starts, if any, must outlive the writers
   std::size_t slabs_ = 0;
 };

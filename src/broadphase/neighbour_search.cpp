@@ -1,5 +1,6 @@
 #include "broadphase/neighbour_search.hpp"
 
+#include "base/heap_trim.hpp"
 #include "base/parallel.hpp"
 #include "broadphase/list_history.hpp"
 #include "broadphase/periodic_search.hpp"
@@ -240,12 +241,13 @@ void build_neighbour_list(World<D>& world) {
   L.skin = skin_length(world);
 
   // Peak memory: during a build the old rows (for their history) and the new ones are both
-  // resident. The force stage's crossing scratch is released first so that it does not add
-  // to that peak (it grows back in one step). The old rows, the pairs with a history, are a
-  // copy, freed when the build ends unless the build's scratch is small (at the end); the new
-  // rows are written over the list's own arrays, which ask the system for no fresh pages unless
-  // they grow.
+  // resident. The force stage's crossing scratch is released first, and with what the step gave
+  // back (world/step.cpp) leaves the process even from holes of the heap (48 bytes a grain off
+  // a settled bed's peak; small systems keep their scratch). The old rows, the pairs with a
+  // history, are a copy, freed when the build ends unless the build's scratch is small (at the
+  // end); the new rows are written over the list's own arrays.
   world.slab_crossing.release();
+  if (!world.keep_build_scratch) give_free_heap_back();
   NeighbourList<D>& old = world.old_rows;
   const std::size_t listed_before = L.other.size();
   keep_loaded_pairs(L, old, n, world.threads);

@@ -226,71 +226,109 @@ void exact_cell_fabric_of_grains(const World<D>& world, std::size_t first, std::
   }
 }
 
-template <int D, bool Measure, bool Extras, bool Periodic>
-void grain_pairs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
-  SlabTally<D>* tally = tallies.data();
-  auto& crossing = world.slab_crossing;
-  const SlabPlan plan = world.slab_plan(world.particles.size());
-  crossing.prepare(plan);
+// What one slab's task does in the pass over the pairs, and in the pass that finishes the slab
+// (finish_slab). Set up once a step by the two passes' caller.
+template <int D>
+struct SlabPasses {
+  SlabPlan plan;
+  bool batched = false, one_law = false;             // pairs
+  bool walls = false, planes = false, move = false;  // finishing
+  double* vmax2 = nullptr;
+};
+
+template <int D>
+SlabPasses<D> slab_passes(World<D>& world, bool measure, bool extras, bool periodic) {
+  SlabPasses<D> p;
+  p.plan = world.slab_plan(world.particles.size());
+  world.slab_crossing.prepare(p.plan, world.threads);
   // Contacts without extras run in batches unless the scalar loop is asked for.
-  const bool batched = contact_path() != ContactPath::kScalar && batch_kernel_has(world.pair_laws);
+  p.batched = contact_path() != ContactPath::kScalar && batch_kernel_has(world.pair_laws);
   // (the vector gather pass runs outside a periodic cell only: no scan there)
-  const bool one_law = batched && !Extras && !Periodic && grains_of_one_material(world);
-  auto& P = world.particles;
-  for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
-    // The slab's forces start from zero here, in the task that adds to them first (a pass of
-    // its own was one more parallel region a step).
-    std::fill(P.force.begin() + static_cast<std::ptrdiff_t>(first),
-              P.force.begin() + static_cast<std::ptrdiff_t>(last), Dim<D>::Vec::Zero());
-    std::fill(P.torque.begin() + static_cast<std::ptrdiff_t>(first),
-              P.torque.begin() + static_cast<std::ptrdiff_t>(last), Dim<D>::zero_rot());
-    if constexpr (!Extras) {
-      if (batched) {
-        batched_pair_rows<D, Measure, Periodic>(world, first, last, tally[s], crossing.slab(s),
-                                                one_law);
-        return;
-      }
-    }
-    pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally[s], crossing.slab(s));
-  });
+  p.one_law = p.batched && !extras && !periodic && grains_of_one_material(world);
+  p.walls = !world.walls.empty();
+  p.planes = walls_by_plane_passes(world, measure, extras);
+  p.move = world.move_in_force_stage;
+  if (p.move) world.slab_vmax2.assign(p.plan.count, 0.0);
+  p.vmax2 = world.slab_vmax2.data();
+  return p;
 }
 
-// What is left of slab s's grains once every slab's pairs are done, all in one pass over the
-// slabs (one parallel region, where four passes had one each): the forces from pairs of
-// earlier slabs (SlabCrossings, in source-slab order), then in a periodic cell the slab's part
-// of the sum of x F^T (the grains' forces then hold their pair contacts alone), then the wall
-// contacts, then, when the step asks for it (world/step.cpp), the grains' move. Each grain gets its
-// additions in the order the three passes gave. (The crossings' extra target, bodies numbered from
-// the grain count up, stays empty here: every partner of a grain-grain pair is a grain.)
+// Slab s's grain-grain rows.
 template <int D, bool Measure, bool Extras, bool Periodic>
-void finish_slabs(World<D>& world, std::vector<SlabTally<D>>& tallies) {
+void pair_slab(World<D>& world, const SlabPasses<D>& p, SlabTally<D>& tally, std::size_t s,
+               std::size_t first, std::size_t last) {
   auto& P = world.particles;
-  auto& crossing = world.slab_crossing;
-  const SlabPlan plan = world.slab_plan(P.size());
-  const bool walls = !world.walls.empty();
-  const bool planes = walls_by_plane_passes(world, Measure, Extras);
-  SlabTally<D>* tally = tallies.data();
-  const bool move = world.move_in_force_stage;
-  if (move) world.slab_vmax2.assign(plan.count, 0.0);
-  double* vmax2 = world.slab_vmax2.data();
-  for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
-    crossing.apply_to(s, [&P](const SlabCrossing<D>& c) {
-      P.force[c.body] += c.a;
-      P.torque[c.body] += c.b;
-    });
-    // (a decomposed cell's plain sum would be replaced by its exact one: not taken)
-    if constexpr (Periodic) {
-      if (world.domain)
-        exact_cell_fabric_of_grains(world, first, last, tally[s]);
-      else if constexpr (kFabricByGrain<D>)
-        cell_fabric_of_grains(world, first, last, tally[s]);
+  // The slab's forces start from zero here, in the task that adds to them first (a pass of
+  // its own was one more parallel region a step).
+  std::fill(P.force.begin() + static_cast<std::ptrdiff_t>(first),
+            P.force.begin() + static_cast<std::ptrdiff_t>(last), Dim<D>::Vec::Zero());
+  std::fill(P.torque.begin() + static_cast<std::ptrdiff_t>(first),
+            P.torque.begin() + static_cast<std::ptrdiff_t>(last), Dim<D>::zero_rot());
+  if constexpr (!Extras) {
+    if (p.batched) {
+      batched_pair_rows<D, Measure, Periodic>(world, first, last, tally,
+                                              world.slab_crossing.slab(s), p.one_law);
+      return;
     }
-    if (walls) wall_rows<D, Measure, Extras>(world, first, last, tally[s], planes);
-    // The slab's forces are complete and every pair is done (the only tasks that read other
-    // slabs' grains): when the step allows it, move the slab's grains while in cache.
-    if (move) vmax2[s] = move_grain_range(world, first, last);
+  }
+  pair_rows<D, Measure, Extras, Periodic>(world, first, last, tally, world.slab_crossing.slab(s));
+}
+
+// What is left of slab s's grains once the pairs of every slab up to s are done (no later
+// slab's row reaches them: a pair is listed in the row of its lower index): the forces from
+// pairs of earlier slabs (SlabCrossings, in source-slab order), then in a periodic cell the
+// slab's part of the sum of x F^T (the grains' forces then hold their pair contacts alone),
+// then the wall contacts, then, when the step asks for it (world/step.cpp), the grains' move.
+// Each grain gets its additions in the order the three passes gave. (The crossings' extra
+// target, bodies numbered from the grain count up, stays empty here: every partner of a
+// grain-grain pair is a grain.)
+template <int D, bool Measure, bool Extras, bool Periodic>
+void finish_slab(World<D>& world, const SlabPasses<D>& p, SlabTally<D>& tally, std::size_t s,
+                 std::size_t first, std::size_t last) {
+  auto& P = world.particles;
+  world.slab_crossing.apply_to(s, [&P](const SlabCrossing<D>& c) {
+    P.force[c.body] += c.a;
+    P.torque[c.body] += c.b;
   });
-  world.grains_moved = move;
+  // (a decomposed cell's plain sum would be replaced by its exact one: not taken)
+  if constexpr (Periodic) {
+    if (world.domain)
+      exact_cell_fabric_of_grains(world, first, last, tally);
+    else if constexpr (kFabricByGrain<D>)
+      cell_fabric_of_grains(world, first, last, tally);
+  }
+  if (p.walls) wall_rows<D, Measure, Extras>(world, first, last, tally, p.planes);
+  // The slab's forces are complete and every pair is done (the only tasks that read other
+  // slabs' grains): when the step allows it, move the slab's grains while in cache.
+  if (p.move) p.vmax2[s] = move_grain_range(world, first, last);
+}
+
+// Slabs side by side: every slab's pairs, then every slab's finish, one parallel region each.
+// On one thread each slab is finished right after its pairs, while its grains are in cache:
+// the sums are the same, in the same order, since the slabs before it are done. Its crossing
+// buckets are then empty, and their blocks go on to the later slabs' pairs: the buckets hold
+// the crossings of about one slab at a time, not of all (at 200,000 spheres in a settled bed
+// about 13 MB, 65 bytes a grain).
+template <int D, bool Measure, bool Extras, bool Periodic>
+void pairs_and_finish(World<D>& world, std::vector<SlabTally<D>>& tallies) {
+  const SlabPasses<D> p = slab_passes(world, Measure, Extras, Periodic);
+  SlabTally<D>* tally = tallies.data();
+  if (slabs_on_threads(p.plan, world.threads)) {
+    for_slabs(p.plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
+      pair_slab<D, Measure, Extras, Periodic>(world, p, tally[s], s, first, last);
+    });
+    for_slabs(p.plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
+      finish_slab<D, Measure, Extras, Periodic>(world, p, tally[s], s, first, last);
+    });
+  } else {
+    for (std::size_t s = 0; s < p.plan.count; ++s) {
+      const std::size_t first = p.plan.first(s), last = p.plan.last(s);
+      pair_slab<D, Measure, Extras, Periodic>(world, p, tally[s], s, first, last);
+      finish_slab<D, Measure, Extras, Periodic>(world, p, tally[s], s, first, last);
+      world.slab_crossing.recycle(s);
+    }
+  }
+  world.grains_moved = p.move;
 }
 
 }  // namespace
@@ -359,14 +397,9 @@ void compute_contact_forces(World<D>& world) {
   // One instantiation per combination, so that a plain packing pays for no option.
   auto run = [&]<bool Measure, bool Extras>() {
     if (world.cell.periodic) {
-      grain_pairs<D, Measure, Extras, true>(world, tallies);
+      pairs_and_finish<D, Measure, Extras, true>(world, tallies);
     } else {
-      grain_pairs<D, Measure, Extras, false>(world, tallies);
-    }
-    if (world.cell.periodic) {
-      finish_slabs<D, Measure, Extras, true>(world, tallies);
-    } else {
-      finish_slabs<D, Measure, Extras, false>(world, tallies);
+      pairs_and_finish<D, Measure, Extras, false>(world, tallies);
     }
   };
   const bool extras = world.contact_extras;

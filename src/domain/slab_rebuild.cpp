@@ -11,14 +11,8 @@
 #include <string>
 #include <tuple>
 
-// (not under AddressSanitizer: its allocator is not glibc's, and glibc's trim of arenas that
-// allocator does not keep crashed when ranks as threads trimmed at once)
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
-#define GEODEM_TRIM_HEAP 1
-#include <malloc.h>
-#endif
-
 #include "base/error.hpp"
+#include "base/heap_trim.hpp"
 #include "broadphase/list_history.hpp"
 #include "broadphase/periodic_search.hpp"
 #include "domain/slab_domain.hpp"
@@ -276,9 +270,7 @@ void SlabDomain<D>::before_build(World<D>& world) {
   std::vector<std::uint32_t>().swap(new_index_);
   for (auto* v : {&clumps_out_down_, &clumps_out_up_, &ghost_clumps_})
     std::vector<ClumpRecord<D>>().swap(*v);
-#ifdef GEODEM_TRIM_HEAP
-  malloc_trim(0);  // and to the system: freed blocks of the heap are kept by glibc otherwise
-#endif
+  give_free_heap_back();  // and to the system (base/heap_trim.hpp)
 }
 
 // New grain k is order_[k]'s source: built one array at a time (one array of extra memory).

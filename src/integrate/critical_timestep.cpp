@@ -116,7 +116,7 @@ double critical_timestep(const World<D>& world) {
   // order, so that the sums, and dt, do not depend on the thread count.
   auto& crossing = world.slab_crossing;
   const SlabPlan plan = have_list ? world.slab_plan(n) : SlabPlan::uniform(0);
-  crossing.prepare(plan);
+  crossing.prepare(plan, world.threads);
   for_slabs(plan, world.threads, [&](std::size_t s, std::size_t first, std::size_t last) {
     auto out = crossing.slab(s);
     auto add = [&](std::size_t b, const Vec& nrm, double kn, double kt, const Vec& l, double kr,

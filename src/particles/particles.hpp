@@ -90,10 +90,34 @@ struct Particles {
   // Reorders every array: new index k holds the grain that had index order[k]. An
   // order shorter than the grains keeps only those it lists (removal).
   void permute(const std::vector<std::uint32_t>& order) {
-    // With stable_buffers (views of the arrays exist: the Python module's numpy arrays), the
-    // result is copied back into the same buffers (never larger: no reallocation), so that the
-    // views keep pointing at live memory; else the new arrays replace the old (one copy less).
+    const std::size_t n = size();
+    // A renumbering (order as long as the arrays) moves every array in place, cycle by
+    // cycle: a new array beside the old one was a list build's peak of memory (24 bytes a
+    // grain for a 3-vector, docs/performance.md "Memory"), and the buffers stay those that
+    // views may hold (stable_buffers: the Python module's numpy arrays).
+    std::vector<bool> placed;
     auto apply = [&](auto& v) {
+      if (order.size() == n && v.size() == n) {
+        placed.assign(n, false);
+        for (std::size_t first = 0; first < n; ++first) {
+          if (placed[first]) continue;
+          auto held = v[first];
+          for (std::size_t k = first;;) {
+            placed[k] = true;
+            const std::size_t from = order[k];
+            if (from == first) {
+              v[k] = held;
+              break;
+            }
+            v[k] = v[from];
+            k = from;
+          }
+        }
+        return;
+      }
+      // A removal: with stable_buffers the result is copied back into the same buffers (never
+      // larger: no reallocation), so that the views keep pointing at live memory; else the
+      // new arrays replace the old (one copy less).
       std::remove_reference_t<decltype(v)> out(order.size());
       for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
       if (stable_buffers)
@@ -104,7 +128,8 @@ struct Particles {
     apply(pos), apply(vel), apply(angvel), apply(radius);
     // The step gives the force and torque arrays back during a list build (world/step.cpp).
     if (!force.empty()) apply(force), apply(torque);
-    apply(inv_mass), apply(inv_inertia), apply(material), apply(flags), apply(pos_at_build);
+    apply(inv_mass), apply(inv_inertia), apply(material), apply(flags);
+    if (!pos_at_build.empty()) apply(pos_at_build);  // (likewise given back)
     if (!orient.empty()) apply(orient);
     apply(id);
     if (!clump.empty()) apply(clump), apply(body_offset);

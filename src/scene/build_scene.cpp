@@ -7,13 +7,13 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
-#include <unordered_map>
 
 #include "base/error.hpp"
 #include "base/random.hpp"
 #include "clumps/grain_mix.hpp"
 #include "io/output_files.hpp"
 #include "particles/random_cloud.hpp"
+#include "scene/input_overlaps.hpp"
 
 namespace geodem {
 
@@ -37,43 +37,6 @@ std::size_t count_data_rows(const std::string& path) {
 }
 
 }  // namespace
-
-template <int D>
-void reject_input_overlaps(const std::vector<Sphere<D>>& g, const std::vector<std::string>& source,
-                           double limit, const std::string& scenario) {
-  if (g.size() < 2) return;
-  double rmax = 0.0;
-  for (const auto& s : g) rmax = std::max(rmax, s.radius);
-  const double cell = 2.0 * rmax;
-  auto key = [&](const typename Dim<D>::Vec& x, int dx, int dy, int dz) {
-    const long long i = static_cast<long long>(std::floor(x[0] / cell)) + dx;
-    const long long j = static_cast<long long>(std::floor(x[1] / cell)) + dy;
-    const long long k = D == 3 ? static_cast<long long>(std::floor(x[D - 1] / cell)) + dz : 0;
-    return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL);
-  };
-  std::unordered_map<long long, std::vector<std::size_t>> cells;
-  for (std::size_t a = 0; a < g.size(); ++a) {
-    const int zr = D == 3 ? 1 : 0;
-    for (int dz = -zr; dz <= zr; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          auto it = cells.find(key(g[a].centre, dx, dy, dz));
-          if (it == cells.end()) continue;
-          for (std::size_t b : it->second) {
-            const double depth = g[a].radius + g[b].radius - (g[a].centre - g[b].centre).norm();
-            if (depth > limit * std::min(g[a].radius, g[b].radius))
-              throw InputError(scenario, 0, source[a],
-                               "this grain overlaps " + source[b] + " by " +
-                                   std::to_string(static_cast<int>(
-                                       100.0 * depth / std::min(g[a].radius, g[b].radius))) +
-                                   " % of the smaller radius (the run stops above " +
-                                   std::to_string(static_cast<int>(100.0 * limit)) +
-                                   " %): move them apart or make them smaller");
-          }
-        }
-    cells[key(g[a].centre, 0, 0, 0)].push_back(a);
-  }
-}
 
 namespace {
 
@@ -318,10 +281,16 @@ void build_world(const SceneSettings& s, World<D>& world) {
   world.particles.reserve(total);
   std::vector<Sphere<D>> placed;
   placed.reserve(total);
-  std::vector<std::string> source;  // where each given grain was given, for messages
-  std::size_t given = 0;
+  // Where each given grain was given (a particle file and its line, or a [[particles]] entry),
+  // for messages: 8 bytes a grain, the text made for an error only.
+  struct GivenAt {
+    std::uint32_t file, at;
+  };
+  constexpr std::uint32_t kEntry = ~std::uint32_t{0};
+  std::vector<GivenAt> source;
+  source.reserve(total);
   for (const auto& p : s.particles) {
-    source.push_back("particles." + std::to_string(given++));
+    source.push_back({kEntry, static_cast<std::uint32_t>(source.size())});
     const auto m = material_index(s.materials, p.material);
     typename Dim<D>::Rot w;
     if constexpr (D == 2)
@@ -335,15 +304,23 @@ void build_world(const SceneSettings& s, World<D>& world) {
   for (std::size_t f = 0; f < s.particle_files.size(); ++f) {
     const auto& spec = s.particle_files[f];
     const auto m = material_index(s.materials, spec.material);
-    read_particle_file<D>(spec, f, s.file, s.materials.size(),
-                          [&](const Vec& x, double r, const Vec& v, long long mat, int line) {
-                            const auto mi = mat < 0 ? m : static_cast<std::uint16_t>(mat);
-                            world.particles.add(x, r, s.materials[mi].density, mi, v);
-                            placed.push_back({x, r});
-                            source.push_back(spec.path + ":" + std::to_string(line));
-                          });
+    read_particle_file<D>(
+        spec, f, s.file, s.materials.size(),
+        [&](const Vec& x, double r, const Vec& v, long long mat, int line) {
+          const auto mi = mat < 0 ? m : static_cast<std::uint16_t>(mat);
+          world.particles.add(x, r, s.materials[mi].density, mi, v);
+          placed.push_back({x, r});
+          source.push_back({static_cast<std::uint32_t>(f), static_cast<std::uint32_t>(line)});
+        });
   }
-  reject_input_overlaps<D>(placed, source, s.max_overlap, s.file);
+  reject_input_overlaps<D>(
+      placed,
+      [&](std::size_t k) {
+        const GivenAt g = source[k];
+        return g.file == kEntry ? "particles." + std::to_string(g.at)
+                                : s.particle_files[g.file].path + ":" + std::to_string(g.at);
+      },
+      s.max_overlap, s.file);
   Random rng(s.seed);
   for (const auto& c : s.clumps) placed.push_back(add_clump_spec(c, s, world));
   for (std::size_t c = 0; c < s.clouds.size(); ++c)
@@ -351,10 +328,6 @@ void build_world(const SceneSettings& s, World<D>& world) {
 }
 
 template void build_world<2>(const SceneSettings&, World<2>&);
-template void reject_input_overlaps<2>(const std::vector<Sphere<2>>&,
-                                       const std::vector<std::string>&, double, const std::string&);
-template void reject_input_overlaps<3>(const std::vector<Sphere<3>>&,
-                                       const std::vector<std::string>&, double, const std::string&);
 template void add_chain_spec<2>(const ChainSpec&, const SceneSettings&, World<2>&);
 template void add_chain_spec<3>(const ChainSpec&, const SceneSettings&, World<3>&);
 template Sphere<2> add_clump_spec<2>(const ClumpSpec&, const SceneSettings&, World<2>&);

@@ -24,14 +24,6 @@ template <int D>
 void add_cloud(const SceneSettings& s, const CloudSpec& cloud, const std::string& key,
                World<D>& world, Random& rng, std::vector<Sphere<D>>& placed);
 
-// Grains given one by one (particles, particle files, Python's add_grains) that overlap by
-// more than the overlap the step stops at (`limit` x the smaller radius) are an input error
-// naming both (`source` says where each was given), not an instability at step 0. A cell
-// grid of the largest diameter: O(N).
-template <int D>
-void reject_input_overlaps(const std::vector<Sphere<D>>& g, const std::vector<std::string>& source,
-                           double limit, const std::string& scenario);
-
 // Adds a [[chains]] entry's chain (its nodes at the given points, split into elements) after
 // the chains already there; grains find it at the next list build.
 template <int D>

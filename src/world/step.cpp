@@ -290,14 +290,17 @@ void step(World<D>& world) {
     if (rebuild) {
       if (world.domain) world.domain->before_build(world);
       // A build is a run's peak of memory (the old rows and the new ones are both resident).
-      // The forces and torques are set afresh after it: their arrays are given back while it
-      // runs (48 bytes a grain in 3D), unless views of them exist (Python's numpy arrays) or
-      // the last build found its scratch small enough to keep (broadphase/neighbour_search).
+      // The forces and torques are set afresh after it, and the positions at the build at its
+      // end: their arrays are given back while it runs (72 bytes a grain in 3D), unless views
+      // of them exist (Python's numpy arrays) or the last build found its scratch small enough
+      // to keep (broadphase/neighbour_search). (A decomposed domain's builds read the
+      // positions at the last build: domain/slab_checkpoint.cpp.)
       auto& P = world.particles;
       const bool give_back = !P.stable_buffers && !world.keep_build_scratch;
       if (give_back) {
         std::vector<typename Dim<D>::Vec>().swap(P.force);
         std::vector<typename Dim<D>::Rot>().swap(P.torque);
+        if (!world.domain) std::vector<typename Dim<D>::Vec>().swap(P.pos_at_build);
       }
       build_neighbour_list(world);
       if (give_back) {

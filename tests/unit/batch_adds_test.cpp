@@ -113,7 +113,7 @@ TYPED_TEST(BatchAdds, SameBitsAsTheScalarLoop) {
   // The branch-free pass, over batches of random lengths (rows cut anywhere).
   const std::vector<std::uint32_t> starts{0, static_cast<std::uint32_t>(last), n};
   SlabCrossings<SlabCrossing<D>> crossings;
-  crossings.prepare(SlabPlan::given(n, starts));
+  crossings.prepare(SlabPlan::given(n, starts), 1);
   auto writer = crossings.slab(0);
   crossings.slab(1);  // (its buckets emptied)
   std::vector<double> got_f = start_f, got_t = start_t;
