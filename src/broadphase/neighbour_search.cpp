@@ -240,14 +240,14 @@ void build_neighbour_list(World<D>& world) {
   const std::size_t n = P.size();
   L.skin = skin_length(world);
 
-  // Peak memory: during a build the old rows (for their history) and the new ones are both
-  // resident. The force stage's crossing scratch is released first, and with what the step gave
-  // back (world/step.cpp) leaves the process even from holes of the heap (48 bytes a grain off
-  // a settled bed's peak; small systems keep their scratch). The old rows, the pairs with a
-  // history, are a copy, freed when the build ends unless the build's scratch is small (at the
-  // end); the new rows are written over the list's own arrays.
-  world.slab_crossing.release();
-  if (!world.keep_build_scratch) give_free_heap_back();
+  // Peak memory: a build holds the old rows (their history) and the new ones. The crossing
+  // scratch goes first, and with what the step gave back (world/step.cpp) leaves even holes of
+  // the heap (48 bytes a grain off a settled bed's peak), unless the scratch is small and kept.
+  // The old rows (pairs with a history) are a copy; the new rows overwrite the list's arrays.
+  if (!world.keep_build_scratch) {
+    world.slab_crossing.release();
+    give_free_heap_back();
+  }
   NeighbourList<D>& old = world.old_rows;
   const std::size_t listed_before = L.other.size();
   keep_loaded_pairs(L, old, n, world.threads);
