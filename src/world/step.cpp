@@ -293,8 +293,8 @@ void step(World<D>& world) {
       // The forces and torques are set afresh after it, and the positions at the build at its
       // end: their arrays are given back while it runs (72 bytes a grain in 3D), unless views
       // of them exist (Python's numpy arrays) or the last build found its scratch small enough
-      // to keep (broadphase/neighbour_search). (A decomposed domain's builds read the
-      // positions at the last build: domain/slab_checkpoint.cpp.)
+      // to keep (broadphase/neighbour_search). (A decomposed domain keeps the positions: its
+      // grains carry them between ranks and its checkpoints rebuild from them, domain/.)
       auto& P = world.particles;
       const bool give_back = !P.stable_buffers && !world.keep_build_scratch;
       if (give_back) {
