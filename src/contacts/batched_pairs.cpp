@@ -197,8 +197,12 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
       const std::size_t m = material[first];
       law = world.pair_laws.data() + m * nmat + m;
       batch_law = batch_law_of(*law);
-      const PairGatherInput in{as_doubles(P.pos.data()), radius, start, other,
-                               as_doubles(L.spring.data())};
+      const PairGatherInput in{as_doubles(P.pos.data()),
+                               radius,
+                               start,
+                               other,
+                               as_doubles(L.spring.data()),
+                               static_cast<std::uint32_t>(L.other.size())};
       PairWindow w(start, first, last);
       while (w.next < w.end) {
         n = gather_touching<D>(path, in, w, batch, n);

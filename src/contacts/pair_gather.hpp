@@ -45,7 +45,8 @@ struct PairGatherInput {
   const double* radius;  // one per grain
   const std::uint32_t* start;
   const std::uint32_t* other;
-  double* spring;  // D components per listed pair in 3D, one in 2D
+  double* spring;       // D components per listed pair in 3D, one in 2D
+  std::uint32_t pairs;  // the list's pairs (other and spring hold this many)
 };
 
 // Whether the pass runs on a contact path (AVX2 and AVX-512).

@@ -124,8 +124,12 @@ Kept scalar_pass(HandList<D>& h, std::size_t first, std::size_t last) {
 template <int D>
 Kept vector_pass(ContactPath path, HandList<D>& h, std::size_t first, std::size_t last) {
   Kept kept;
-  const PairGatherInput in{h.pos.front().data(), h.radius.data(), h.start.data(), h.other.data(),
-                           reinterpret_cast<double*>(h.spring.data())};
+  const PairGatherInput in{h.pos.front().data(),
+                           h.radius.data(),
+                           h.start.data(),
+                           h.other.data(),
+                           reinterpret_cast<double*>(h.spring.data()),
+                           static_cast<std::uint32_t>(h.other.size())};
   PairWindow w(h.start.data(), first, last);
   ContactBatch<D> batch{};
   int n = 0;
