@@ -144,10 +144,11 @@ constexpr std::uint32_t kAheadPairs = 64;
 
 // Asks for the springs of the W listed pairs kAheadPairs after c. The pass reads every listed
 // pair's spring in list order (apart pairs' springs are cleared if not zero); on a bed of a few
-// hundred thousand grains the springs (24 bytes a pair, about 30 MB) come from main memory, and
-// the processor's own prefetcher, following this stream among the others the pass reads, did
-// not keep up: these loads held about 45 % of the pass's time. Asking for the partners' state
-// ahead as well (the grain of the group's last pair) made the step slower.
+// hundred thousand grains the springs (24 bytes a pair, 19 MB on a settled bed of 200,000
+// spheres) come from main memory, and the processor's own prefetcher, following this stream
+// among the others the pass reads, did not keep up: these loads held about 45 % of the pass's
+// time. Asking for the partners' state ahead as well (the grain of the group's last pair) made
+// the step slower (docs/performance.md).
 template <int D, int W>
 inline void prefetch_springs(const PairGatherInput& in, std::uint32_t c) {
   const std::uint32_t a = c + kAheadPairs;
