@@ -153,9 +153,9 @@ template <int D, int W>
 inline void prefetch_springs(const PairGatherInput& in, std::uint32_t c) {
   const std::uint32_t a = c + kAheadPairs;
   if (a + W > in.pairs) return;
-  constexpr int kBytes = 8 * (D == 3 ? 3 : 1) * W;  // the W springs
-  const char* spring =
-      reinterpret_cast<const char*>(in.spring + static_cast<std::size_t>(a) * (D == 3 ? 3 : 1));
+  constexpr int S = D == 3 ? 3 : 1;  // doubles per spring
+  constexpr int kBytes = 8 * S * W;  // the W springs
+  const char* spring = reinterpret_cast<const char*>(in.spring + static_cast<std::size_t>(a) * S);
   for (int at = 0; at < kBytes; at += 64) _mm_prefetch(spring + at, _MM_HINT_T0);
   _mm_prefetch(spring + (kBytes - 1), _MM_HINT_T0);
 }
