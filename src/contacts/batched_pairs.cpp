@@ -204,6 +204,7 @@ void batched_pair_rows(World<D>& world, std::size_t first, std::size_t last, Sla
                                as_doubles(L.spring.data()),
                                static_cast<std::uint32_t>(L.other.size())};
       PairWindow w(start, first, last);
+      batch.measured = true;
       while (w.next < w.end) {
         n = gather_touching<D>(path, in, w, batch, n);
         if (w.next < w.end) add_batch();  // the batch is full

@@ -36,6 +36,12 @@ struct ContactBatch {
   // as is the affine field's part L d of the relative velocity.
   alignas(64) double d[D][kSize];
   alignas(64) double vel_shift[D][kSize];
+  // In a box from the vector gather pass (contacts/pair_gather.hpp), which measured each pair:
+  // d and the radii of i and j, written with i, j and k, are read instead of loaded again from
+  // the grains (`measured`).
+  alignas(64) double radius_i[kSize];
+  alignas(64) double radius_j[kSize];
+  bool measured = false;
   // Out: the force on j, the torque terms ai (n x f) (taken from i) and -aj (n x f) (on j),
   // the normal force and the overlap.
   alignas(64) double f[D][kSize];

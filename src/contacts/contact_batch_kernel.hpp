@@ -89,14 +89,19 @@ inline void kernel(const BatchLaw& law, const BatchGrains& g, double dt, Contact
   auto gather_part = [](const double* base, const I& index, int a) {
     return gather<A>(base + a, index);
   };
+  const bool measured = !Periodic && b.measured;  // d and the radii read, not loaded again
   for (int c = 0; c < n; c += W) {
     const I ii = I::load_aligned(b.i + c), jj = I::load_aligned(b.j + c);
     const I kk = I::load_aligned(b.k + c);
     const I iv = D == 3 ? ii + ii + ii : ii + ii, jv = D == 3 ? jj + jj + jj : jj + jj;
     const I ir = R == 3 ? ii + ii + ii : ii, jr = R == 3 ? jj + jj + jj : jj;
     const I ks = D == 3 ? kk + kk + kk : kk;
-    const V ri = gather<A>(g.radius, ii), rj = gather<A>(g.radius, jj);
-    V inv_msum = gather<A>(g.inv_mass, ii) + gather<A>(g.inv_mass, jj);
+    auto singles = [&](const double* base, const std::int64_t* index) {
+      return triple_detail::load_singles<A>(base, index + c);
+    };
+    const V ri = measured ? load(b.radius_i + c) : singles(g.radius, b.i);
+    const V rj = measured ? load(b.radius_j + c) : singles(g.radius, b.j);
+    V inv_msum = singles(g.inv_mass, b.i) + singles(g.inv_mass, b.j);
     if (g.shares) inv_msum = inv_msum * load(b.share + c);
     // In 3D each grain's (or spring's) three components are loaded together and transposed
     // (contacts/triple_loads.hpp); in 2D they are gathered.
@@ -113,7 +118,7 @@ inline void kernel(const BatchLaw& law, const BatchGrains& g, double dt, Contact
       for (int a = 0; a < count; ++a) out[a] = gather_part(base, scaled, a);
     };
     V dv[D];
-    if constexpr (Periodic) {
+    if (Periodic || measured) {
       for (int a = 0; a < D; ++a) dv[a] = load(b.d[a] + c);
     } else {
       V pi[D], pj[D];

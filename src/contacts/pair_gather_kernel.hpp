@@ -165,7 +165,8 @@ inline void prefetch_springs(const PairGatherInput& in, std::uint32_t c) {
 // ends the history of the pairs apart.
 template <int D>
 __mmask8 measure_avx512(const PairGatherInput& in, const PairWindow& w, std::uint32_t c,
-                        __mmask8 live, __m512i& ii, __m512i& jj, __m512i& kk) {
+                        __mmask8 live, __m512i& ii, __m512i& jj, __m512i& kk, __m512d (&d)[D],
+                        __m512d& ri, __m512d& rj) {
   // (The gathers and widenings take a zero vector and a full mask where their plain forms
   // start from an undefined one, which GCC reports as used uninitialized.)
   const __m512d zero = _mm512_setzero_pd();
@@ -196,11 +197,12 @@ __mmask8 measure_avx512(const PairGatherInput& in, const PairWindow& w, std::uin
   }
   __m512d dist2 = _mm512_setzero_pd();
   for (int a = 0; a < D; ++a) {
-    const __m512d d = _mm512_sub_pd(pj[a], pi[a]);
-    dist2 = a == 0 ? _mm512_mul_pd(d, d) : _mm512_add_pd(dist2, _mm512_mul_pd(d, d));
+    d[a] = _mm512_sub_pd(pj[a], pi[a]);
+    dist2 = a == 0 ? _mm512_mul_pd(d[a], d[a]) : _mm512_add_pd(dist2, _mm512_mul_pd(d[a], d[a]));
   }
-  const __m512d rs = _mm512_add_pd(_mm512_mask_i64gather_pd(zero, 0xff, ii, in.radius, 8),
-                                   _mm512_mask_i64gather_pd(zero, 0xff, jj, in.radius, 8));
+  ri = _mm512_mask_i64gather_pd(zero, 0xff, ii, in.radius, 8);
+  rj = _mm512_mask_i64gather_pd(zero, 0xff, jj, in.radius, 8);
+  const __m512d rs = _mm512_add_pd(ri, rj);
   const __mmask8 apart = _mm512_mask_cmp_pd_mask(live, dist2, _mm512_mul_pd(rs, rs), _CMP_GE_OQ);
   // The springs of the pairs apart: those whose squared norm is not zero end.
   constexpr int S = D == 3 ? 3 : 1;
@@ -230,16 +232,24 @@ struct PackOrders {
   }
 };
 
-template <class Isa>
-__m256i pack_front(__m256i v, unsigned keep) {
+inline __m256i pack_front(__m256i v, unsigned keep) {
   static constexpr PackOrders kOrders{};
   const __m256i order = _mm256_load_si256(reinterpret_cast<const __m256i*>(kOrders.order[keep]));
   return _mm256_permutevar8x32_epi32(v, order);
 }
 
+// Stores the lanes `keep` names at `to`, in order, then the others.
+inline void store_front(std::int64_t* to, __m256i v, unsigned keep) {
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(to), pack_front(v, keep));
+}
+inline void store_front(double* to, __m256d v, unsigned keep) {
+  _mm256_storeu_pd(to, _mm256_castsi256_pd(pack_front(_mm256_castpd_si256(v), keep)));
+}
+
 template <int D>
 unsigned measure_avx2(const PairGatherInput& in, const PairWindow& w, std::uint32_t c, int lanes,
-                      __m256i& ii, __m256i& jj, __m256i& kk) {
+                      __m256i& ii, __m256i& jj, __m256i& kk, __m256d (&d)[D], __m256d& ri,
+                      __m256d& rj) {
   const __m256d zero = _mm256_setzero_pd();
   const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
   alignas(16) static constexpr std::int32_t kFirst[5][4] = {
@@ -274,11 +284,12 @@ unsigned measure_avx2(const PairGatherInput& in, const PairWindow& w, std::uint3
   }
   __m256d dist2 = _mm256_setzero_pd();
   for (int a = 0; a < D; ++a) {
-    const __m256d d = _mm256_sub_pd(pj[a], pi[a]);
-    dist2 = a == 0 ? _mm256_mul_pd(d, d) : _mm256_add_pd(dist2, _mm256_mul_pd(d, d));
+    d[a] = _mm256_sub_pd(pj[a], pi[a]);
+    dist2 = a == 0 ? _mm256_mul_pd(d[a], d[a]) : _mm256_add_pd(dist2, _mm256_mul_pd(d[a], d[a]));
   }
-  const __m256d rs = _mm256_add_pd(_mm256_mask_i64gather_pd(zero, in.radius, ii, all, 8),
-                                   _mm256_mask_i64gather_pd(zero, in.radius, jj, all, 8));
+  ri = _mm256_mask_i64gather_pd(zero, in.radius, ii, all, 8);
+  rj = _mm256_mask_i64gather_pd(zero, in.radius, jj, all, 8);
+  const __m256d rs = _mm256_add_pd(ri, rj);
   const __m256d apart_v = _mm256_cmp_pd(dist2, _mm256_mul_pd(rs, rs), _CMP_GE_OQ);
   const unsigned apart = static_cast<unsigned>(_mm256_movemask_pd(apart_v)) & live;
   constexpr int S = D == 3 ? 3 : 1;
@@ -300,19 +311,30 @@ int gather_touching(const PairGatherInput& in, PairWindow& w, ContactBatch<D>& b
 #if defined(__AVX512F__)
       const auto live = static_cast<__mmask8>((1u << lanes) - 1u);
       __m512i ii, jj, kk;
-      const __mmask8 keep = measure_avx512<D>(in, w, c, live, ii, jj, kk);
+      __m512d d[D];
+      __m512d ri, rj;
+      const __mmask8 keep = measure_avx512<D>(in, w, c, live, ii, jj, kk, d, ri, rj);
       _mm512_storeu_si512(b.i + n, _mm512_maskz_compress_epi64(keep, ii));
       _mm512_storeu_si512(b.j + n, _mm512_maskz_compress_epi64(keep, jj));
       _mm512_storeu_si512(b.k + n, _mm512_maskz_compress_epi64(keep, kk));
+      for (int a = 0; a < D; ++a)
+        _mm512_storeu_pd(b.d[a] + n, _mm512_maskz_compress_pd(keep, d[a]));
+      _mm512_storeu_pd(b.radius_i + n, _mm512_maskz_compress_pd(keep, ri));
+      _mm512_storeu_pd(b.radius_j + n, _mm512_maskz_compress_pd(keep, rj));
       n += std::popcount(static_cast<unsigned>(keep));
 #endif
     } else {
 #if defined(__AVX2__)
       __m256i ii, jj, kk;
-      const unsigned keep = measure_avx2<D>(in, w, c, lanes, ii, jj, kk);
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(b.i + n), pack_front<Isa>(ii, keep));
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(b.j + n), pack_front<Isa>(jj, keep));
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(b.k + n), pack_front<Isa>(kk, keep));
+      __m256d d[D];
+      __m256d ri, rj;
+      const unsigned keep = measure_avx2<D>(in, w, c, lanes, ii, jj, kk, d, ri, rj);
+      store_front(b.i + n, ii, keep);
+      store_front(b.j + n, jj, keep);
+      store_front(b.k + n, kk, keep);
+      for (int a = 0; a < D; ++a) store_front(b.d[a] + n, d[a], keep);
+      store_front(b.radius_i + n, ri, keep);
+      store_front(b.radius_j + n, rj, keep);
       n += std::popcount(keep);
 #endif
     }

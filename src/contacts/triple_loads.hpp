@@ -1,7 +1,8 @@
 // Loads and stores of 3-vectors picked by index (grains' positions, velocities, spins; pairs'
-// springs) as three vectors of components, for the kernels built per instruction set
-// (contact_batch_kernel.hpp, pair_gather_kernel.hpp; only files built with that set's flags
-// include this header, and every function is a template of xsimd's architecture).
+// springs) as three vectors of components, and loads of single doubles picked by index, for
+// the kernels built per instruction set (contact_batch_kernel.hpp, pair_gather_kernel.hpp; only
+// files built with that set's flags include this header, and every function is a template of
+// xsimd's architecture).
 //
 // A gather instruction loads one double a lane: three of them fetch the W vectors' components
 // with 3 W loads, and on some processors (AMD Zen 4) each costs several times its W loads. Here
@@ -106,6 +107,33 @@ inline void store_triples(double* base, const std::int64_t* index,
   for (int a = 0; a < 3; ++a) in[a].store_aligned(part[a]);
   for (int l = 0; l < live; ++l)
     for (int a = 0; a < 3; ++a) base[3 * index[l] + a] = part[a][l];
+}
+
+// Lane l = base[index[l]]: one double a grain (the inverse masses). Loaded two lanes at a time
+// (a scalar load and a load into the upper half) and the halves inserted, instead of a gather
+// instruction. In the kernel this was 2 % faster on a dense bed (AMD Zen 4); in the gather
+// pass, for the radii, it was slower than the gathers (docs/performance.md), which stay there.
+template <class A>
+inline xsimd::batch<double, A> load_singles(const double* base, const std::int64_t* index) {
+  using V = xsimd::batch<double, A>;
+#if defined(__AVX2__)
+  auto two = [&](int l) { return _mm_loadh_pd(_mm_load_sd(base + index[l]), base + index[l + 1]); };
+  auto four = [&](int l) { return _mm256_set_m128d(two(l + 2), two(l)); };
+#endif
+#if defined(__AVX512F__)
+  if constexpr (std::is_same_v<A, xsimd::avx512f>) {
+    // (The masked forms: GCC 12's plain ones start from an undefined vector, which -Werror
+    // reports as used uninitialized.)
+    const __m512d low = _mm512_maskz_insertf64x4(0xff, _mm512_setzero_pd(), four(0), 0);
+    return _mm512_maskz_insertf64x4(0xff, low, four(4), 1);
+  }
+#endif
+#if defined(__AVX2__)
+  if constexpr (std::is_same_v<A, xsimd::avx2>) return four(0);
+#endif
+  alignas(64) double value[V::size];
+  for (std::size_t l = 0; l < V::size; ++l) value[l] = base[index[l]];
+  return V::load_aligned(value);
 }
 
 }  // namespace geodem::triple_detail

@@ -1,5 +1,6 @@
 // The vector gather pass (contacts/pair_gather.hpp) keeps exactly the pairs the scalar pass
-// keeps, in list order, and ends exactly the springs it ends, on every path the machine runs.
+// keeps, in list order, with the branch and radii the kernel then reads, and ends exactly the
+// springs it ends, on every path the machine runs.
 // The list is built by hand to reach its corners: empty rows, rows of one pair and rows longer
 // than a vector and than a window of pairs, slabs that start and end inside the list, pairs
 // just touching or just apart (at 1 ulp), and springs of every kind on pairs apart: zero, -0,
@@ -97,6 +98,7 @@ HandList<D> hand_list(std::size_t grains, std::uint64_t seed) {
 
 struct Kept {
   std::vector<std::int64_t> i, j, k;
+  std::vector<double> d, ri, rj;  // per kept pair: x_j - x_i (D components), the radii
 };
 
 // The scalar pass's decisions (contacts/batched_pairs.cpp).
@@ -115,10 +117,17 @@ Kept scalar_pass(HandList<D>& h, std::size_t first, std::size_t last) {
         kept.i.push_back(static_cast<std::int64_t>(i));
         kept.j.push_back(j);
         kept.k.push_back(k);
+        for (int a = 0; a < D; ++a) kept.d.push_back(d[a]);
+        kept.ri.push_back(h.radius[i]);
+        kept.rj.push_back(h.radius[j]);
       }
     }
   }
   return kept;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
 template <int D>
@@ -137,6 +146,10 @@ Kept vector_pass(ContactPath path, HandList<D>& h, std::size_t first, std::size_
     kept.i.insert(kept.i.end(), batch.i, batch.i + n);
     kept.j.insert(kept.j.end(), batch.j, batch.j + n);
     kept.k.insert(kept.k.end(), batch.k, batch.k + n);
+    for (int c = 0; c < n; ++c)
+      for (int a = 0; a < D; ++a) kept.d.push_back(batch.d[a][c]);
+    kept.ri.insert(kept.ri.end(), batch.radius_i, batch.radius_i + n);
+    kept.rj.insert(kept.rj.end(), batch.radius_j, batch.radius_j + n);
     n = 0;
   };
   while (w.next < w.end) {
@@ -166,6 +179,10 @@ TYPED_TEST(PairGather, KeepsTheScalarPassPairsAndEndsItsSprings) {
         EXPECT_EQ(got.i, want.i);
         EXPECT_EQ(got.j, want.j);
         EXPECT_EQ(got.k, want.k);
+        // What the kernel reads instead of the grains (ContactBatch::measured), to the bit.
+        EXPECT_TRUE(same_bits(got.d, want.d));
+        EXPECT_TRUE(same_bits(got.ri, want.ri));
+        EXPECT_TRUE(same_bits(got.rj, want.rj));
         EXPECT_EQ(std::memcmp(h.spring.data(), ref.spring.data(),
                               h.spring.size() * sizeof(TangentSpring<D>)),
                   0);
