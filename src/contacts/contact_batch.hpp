@@ -78,7 +78,8 @@ const char* contact_path_name(ContactPath p);
 bool contact_path_supported(ContactPath p);
 // The path the step uses unless told otherwise: the widest batches the processor runs,
 // AVX-512 or AVX2, else the scalar loop: the SSE2 batches were slower than the scalar loop on
-// every case measured (benchmarks/README.md, "The force stage per contact").
+// an Intel Xeon (faster per contact on an AMD EPYC since the add pass moves pairs; whole runs
+// not yet timed: benchmarks/README.md, "The force stage per contact").
 ContactPath default_contact_path();
 // The path the step uses: the environment's GEODEM_CONTACT_PATH (scalar, sse2, avx2 or
 // avx512) if set to a supported one, else the default, until set_contact_path.
