@@ -56,6 +56,11 @@ void close_open_row(OpenRowSums<D>& open, std::size_t last, double* force, doubl
   open = OpenRowSums<D>{last};
 }
 
+// x's bits where keep is all ones, +0 where it is zero.
+inline double masked(double x, std::uint64_t keep) {
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) & keep);
+}
+
 // Two doubles side by side: the x and y of a force or torque, added and masked as one SSE2
 // register where the processor has SSE2 (every x86-64), as two scalars elsewhere. Each lane is
 // the scalar operation on its own double, so the bits are the scalar loop's.
@@ -79,23 +84,17 @@ struct TwoDoubles {
   static TwoDoubles of(double x, double y) { return {x, y}; }
   void store(double* p) const { p[0] = x, p[1] = y; }
   TwoDoubles masked(std::uint64_t keep) const {
-    return {std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) & keep),
-            std::bit_cast<double>(std::bit_cast<std::uint64_t>(y) & keep)};
+    return {geodem::masked(x, keep), geodem::masked(y, keep)};
   }
   friend TwoDoubles operator+(TwoDoubles a, TwoDoubles b) { return {a.x + b.x, a.y + b.y}; }
   friend TwoDoubles operator-(TwoDoubles a, TwoDoubles b) { return {a.x - b.x, a.y - b.y}; }
 };
 #endif
 
-inline double masked(double x, std::uint64_t keep) {
-  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) & keep);
-}
-
 // A grain's force (D doubles) and torque (one in 2D, three in 3D) as pairs and single doubles:
 // x y of the force, then z in 3D; the torque's x y and z in 3D, its one component in 2D.
 template <int D>
 struct ForceAndTorque {
-  static constexpr int kRot = ContactBatch<D>::kRot;
   // (No initializers: the add pass keeps a batch's worth of these on the stack, written before
   // they are read; the members a dimension does not use are set to zero.)
   TwoDoubles f_xy, t_xy;  // t_xy zero in 2D
