@@ -1,8 +1,9 @@
 // Geosynthetic sheets (2D) and cables (3D) as chains of dynamic spar elements (DSEM):
 // nodes with lumped masses, joined by elements that carry tension only,
-// T = J max(strain, 0), with an optional bending stiffness at interior nodes (2D).
-// Nodes are integrated with the grains in the same step; grains touch the elements
-// (structures/spar_contacts.cpp). Structure of arrays, like the grains.
+// T = J max(strain, 0) (and a push once an element is shorter than the sheet's thickness), with an
+// optional bending stiffness at interior nodes (2D). Nodes are integrated with the grains in the
+// same step; grains touch the elements (structures/spar_contacts.cpp). Structure of arrays, like
+// the grains.
 #pragma once
 
 #include <cmath>
@@ -50,7 +51,7 @@ struct SparChains {
   std::vector<std::uint16_t> material;
   std::vector<std::uint32_t> chain_of;
   std::vector<double> rest_turn;  // 2D bending: rest angle from this element to `next`
-  std::vector<double> tension;    // result of the current step (N/m in 2D)
+  std::vector<double> tension;    // axial force of the current step (N/m in 2D; < 0: folded up)
   // Sum of the normal forces of the grains touching each element this step (both faces;
   // N/m in 2D): what a pull-out reads to split the tension among the sheet's parts.
   // Recomputed every step, so not part of a checkpoint.

@@ -11,6 +11,18 @@
 
 namespace geodem {
 
+double axial_force(double J, double length, double rest_length, double thickness) {
+  // Tension only: a slack element carries nothing (a sheet buckles freely) ...
+  if (length >= rest_length) return J * (length / rest_length - 1.0);
+  // ... until its nodes come closer than the sheet's thickness: the material folded up
+  // between them cannot pass through itself. Without this an element pressed end to end
+  // (a free end dragged by the soil, a trench fill settling along the sheet) could shrink to
+  // nothing and turn inside out, its bending moment flipping sign at a length where the
+  // bending springs' stiffness (k_b / l^2) far exceeds the time step's estimate.
+  if (length < thickness) return -J * (thickness - length) / rest_length;
+  return 0.0;
+}
+
 template <int D>
 void spar_element_forces(World<D>& world) {
   using Vec = typename Dim<D>::Vec;
@@ -19,10 +31,9 @@ void spar_element_forces(World<D>& world) {
     const std::uint32_t a = S.node_a[e], b = S.node_b[e];
     const Vec d = S.pos[b] - S.pos[a];
     const double len = d.norm();
-    // Tension only: a slack element carries nothing (a sheet buckles freely).
-    const double T = S.stiffness[e] * std::max(len / S.rest_length[e] - 1.0, 0.0);
+    const double T = axial_force(S.stiffness[e], len, S.rest_length[e], 2.0 * S.half_thickness[e]);
     S.tension[e] = T;
-    if (T > 0.0) {
+    if (T != 0.0 && len > 0.0) {
       const Vec f = (T / len) * d;
       S.force[a] += f;
       S.force[b] -= f;

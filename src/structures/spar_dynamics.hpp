@@ -7,6 +7,11 @@
 
 namespace geodem {
 
+// An element's axial force (N/m in 2D, N in 3D; positive in tension): J x strain when
+// stretched, nothing when slack, and a push of J x (thickness - length) / rest length once
+// its nodes come closer than the sheet's thickness.
+double axial_force(double J, double length, double rest_length, double thickness);
+
 // Stage "structures": adds the element tensions and bending forces to the nodes'
 // forces (already holding the grain contacts) and stores each element's tension.
 template <int D>

@@ -10,7 +10,11 @@
 // - a grain sliding along a chain keeps its friction force mu N, without a jump, as it
 //   crosses from one element to the next; at a node it is counted once;
 // - bending forces are minus the gradient of k_b (phi - phi0)^2 / 2 (central differences),
-//   with no net force or moment.
+//   with no net force or moment;
+// - an element pressed end to end stops folding up at the sheet's thickness: its free node
+//   comes back elastically (the spring J / L0 of a linear oscillator: deepest push
+//   v sqrt(m / k), speed restored), and a stiff bent sheet's end element never turns inside
+//   out.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -295,6 +299,67 @@ TEST(SparChain2D, GrainOnASharedNodeIsCountedOnce) {
     EXPECT_LT(rel_err(-sum.y(), g.weight), 1e-6);
     EXPECT_LT(std::abs(sum.x()), 1e-6 * g.weight);
   }
+}
+
+TYPED_TEST(SparChain, FoldedElementKeepsItsNodesTheThicknessApart) {
+  constexpr int D = TypeParam::value;
+  EXPECT_EQ(axial_force(2e5, 1.01, 1.0, 0.1), 2e5 * (1.01 - 1.0));         // stretched: J strain
+  EXPECT_EQ(axial_force(2e5, 0.5, 1.0, 0.1), 0.0);                         // slack: nothing
+  EXPECT_NEAR(axial_force(2e5, 0.08, 2.0, 0.1), -2e5 * 0.02 / 2.0, 1e-9);  // folded up: a push
+  World<D> w;
+  const auto mat = add_material(w, linear_material(1e5, 5e4, 0.5, 1.0));
+  w.resolve_pair_laws();
+  const double J = 1e4, L0 = 0.1, mu = 2.0, thickness = 0.01, v = 0.05;
+  w.spars.add_chain("sheet", {Vec<D>::Zero(), vec<D>(L0, 0.0)}, J, mu, thickness, mat);
+  auto& S = w.spars;
+  S.flags[0] = kNodeDriven;
+  S.vel[1] = vec<D>(-v, 0.0);  // the free node runs at the held one
+  const double m = 0.5 * mu * L0, k = J / L0;
+  w.dt = 0.01 * std::sqrt(m / k);  // fine enough for the oscillator's closed form
+  double closest = L0;
+  while (S.vel[1].x() < 0.0 || S.pos[1].x() < thickness) {
+    step(w);
+    closest = std::min(closest, S.pos[1].x());
+    ASSERT_GT(S.pos[1].x(), 0.0);
+  }
+  // The push acts on the node's mass (half the element's) with stiffness J / L0.
+  const double expected = thickness - v * std::sqrt(m / k);
+  report("folded element: deepest approach (m)", closest);
+  report("folded element: deepest approach expected (m)", expected);
+  EXPECT_NEAR(closest, expected, 0.01 * (thickness - expected));
+  EXPECT_NEAR(S.vel[1].x(), v, 1e-3 * v);
+}
+
+TEST(SparChain2D, StiffSheetsEndElementDoesNotTurnInsideOut) {
+  World<2> w;
+  const auto mat = add_material(w, linear_material(1e5, 5e4, 0.5, 1.0));
+  w.resolve_pair_laws();
+  // Three elements, the first two held; the free end is thrown back at its neighbour,
+  // end to end, as a grain dragging a sheet's end can do. Without the push at the thickness
+  // the element shrinks to nothing, flips, and its bending moment (k_b pi) then acts over a
+  // vanishing length.
+  const double kb = 50.0, L0 = 0.024, thickness = 0.0024, v = 0.5;
+  w.spars.add_chain("sheet",
+                    {Vec<2>(0.0, 0.0), Vec<2>(L0, 0.0), Vec<2>(2 * L0, 0.0), Vec<2>(3 * L0, 0.0)},
+                    1e6, 6.0, thickness, mat, kb);
+  auto& S = w.spars;
+  S.flags[0] = S.flags[1] = S.flags[2] = kNodeDriven;
+  S.vel[3] = Vec<2>(-v, 0.0);
+  w.dt = 0.01 * std::sqrt(S.inertial_mass[3] / (1e6 / L0));  // resolves the push's oscillation
+  double closest = L0, worst_turn = 0.0;
+  // Until the end node has come back out beyond the thickness (before the element pulls).
+  for (int k = 0; k < 1000000 && (S.vel[3].x() < 0.0 || S.pos[3].x() - S.pos[2].x() < thickness);
+       ++k) {
+    step(w);
+    closest = std::min(closest, S.pos[3].x() - S.pos[2].x());
+    worst_turn = std::max(worst_turn, std::abs(S.turn_angle(1)));
+  }
+  report("stiff sheet's end: closest approach (m)", closest);
+  report("stiff sheet's end: largest turn (rad)", worst_turn);
+  EXPECT_GT(closest, 0.5 * thickness);
+  EXPECT_LT(worst_turn, 1e-9);
+  EXPECT_TRUE(S.pos[3].allFinite());
+  EXPECT_NEAR(S.vel[3].x(), v, 1e-3 * v);  // thrown back at its speed
 }
 
 TEST(SparChain2D, BendingForcesDeriveFromTheirPotential) {
