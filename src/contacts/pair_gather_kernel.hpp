@@ -260,9 +260,10 @@ unsigned measure_avx2(const PairGatherInput& in, const PairWindow& w, std::uint3
   ii = _mm256_cvtepu32_epi64(
       _mm_maskload_epi32(reinterpret_cast<const int*>(w.row_of + (c - w.base)), load));
   jj = _mm256_cvtepu32_epi64(_mm_maskload_epi32(reinterpret_cast<const int*>(in.other + c), load));
-  // Lanes past the slab's end name pair 0: the batch's entries past its count are computed too.
-  kk = _mm256_and_si256(_mm256_add_epi64(_mm256_set1_epi64x(c), _mm256_set_epi64x(3, 2, 1, 0)),
-                        _mm256_cvtepi32_epi64(load));
+  // Lanes past the window's end name pair c: the batch's entries past its count are computed
+  // too, and must read springs of this slab alone (another slab's task may be writing its own).
+  kk = _mm256_add_epi64(_mm256_set1_epi64x(c), _mm256_and_si256(_mm256_set_epi64x(3, 2, 1, 0),
+                                                                _mm256_cvtepi32_epi64(load)));
   const __m256i iv =
       D == 3 ? _mm256_add_epi64(_mm256_add_epi64(ii, ii), ii) : _mm256_add_epi64(ii, ii);
   const __m256i jv =
@@ -316,7 +317,10 @@ int gather_touching(const PairGatherInput& in, PairWindow& w, ContactBatch<D>& b
       const __mmask8 keep = measure_avx512<D>(in, w, c, live, ii, jj, kk, d, ri, rj);
       _mm512_storeu_si512(b.i + n, _mm512_maskz_compress_epi64(keep, ii));
       _mm512_storeu_si512(b.j + n, _mm512_maskz_compress_epi64(keep, jj));
-      _mm512_storeu_si512(b.k + n, _mm512_maskz_compress_epi64(keep, kk));
+      // The lanes after the kept ones: pair c (of this window) rather than zeros, so that a
+      // kernel's loads beyond the batch's end read this slab's springs, never pair 0's, which
+      // the first slab's task may be writing (indices i and j of grains are only read).
+      _mm512_storeu_si512(b.k + n, _mm512_mask_compress_epi64(_mm512_set1_epi64(c), keep, kk));
       for (int a = 0; a < D; ++a)
         _mm512_storeu_pd(b.d[a] + n, _mm512_maskz_compress_pd(keep, d[a]));
       _mm512_storeu_pd(b.radius_i + n, _mm512_maskz_compress_pd(keep, ri));
