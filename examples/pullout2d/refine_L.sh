@@ -5,7 +5,7 @@
 # summary's refinement block; the figures go to expected/. About 35 minutes on 2 cores.
 #
 # More seeds: FIRST_SEED=4 FACTORS='[1.0, 0.5]' refine_L.sh runs/refine46 runs seeds 4-6 at
-# the full and the half grain size (about 55 minutes) and prints the same lines; its figures
+# the full and the half grain size (about 40 minutes) and prints the same lines; its figures
 # stay in the output folder (expected/ keeps those of seeds 1-3).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
