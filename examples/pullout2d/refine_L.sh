@@ -6,17 +6,19 @@
 #
 # More seeds: FIRST_SEED=4 FACTORS='[1.0, 0.5]' refine_L.sh runs/refine46 runs seeds 4-6 at
 # the full and the half grain size (about 40 minutes) and prints the same lines; its figures
-# stay in the output folder (expected/ keeps those of seeds 1-3).
+# stay in the output folder (expected/ keeps those of seeds 1-3). Arguments after OUT go to
+# every run (e.g. --set sheet.bending_stiffness=50); expected/ is then left as it is.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 OUT=${1:-runs/refine}
+shift || true
 FIRST_SEED=${FIRST_SEED:-1}
 FACTORS=${FACTORS:-[1.0, 0.7071, 0.5]}
 for name in L_silt L_sand; do
   ./build/geodem run "examples/pullout2d/$name.toml" --out "$OUT/$name" --overwrite --threads 2 --quiet \
     --set "seed=$FIRST_SEED" --set "refinement.radius_factors=$FACTORS" \
-    --set pull.max_displacement=0.2 --set 'pull.profiles_at=[0.02, 0.1, 0.2]'
-  if [ "$FIRST_SEED" = 1 ]; then
+    --set pull.max_displacement=0.2 --set 'pull.profiles_at=[0.02, 0.1, 0.2]' "$@"
+  if [ "$FIRST_SEED" = 1 ] && [ $# = 0 ]; then
     cp "$OUT/$name/pullout_refinement.png" "examples/pullout2d/expected/${name}_refinement.png"
     cp "$OUT/$name/pullout_seeds.png" "examples/pullout2d/expected/${name}_refinement_seeds.png"
   fi

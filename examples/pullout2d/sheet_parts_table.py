@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Where the tension goes: sheet_parts_table.py RUN_DIR... (each the output folder of a
-pull-out run over seeds, e.g. runs/pullout2d/L_silt). For each, the tension each part of
+pull-out run over seeds, e.g. runs/pullout2d/L_silt; a refinement's folders with
+--size F, e.g. --size 1 runs/refine/L_silt+runs/refine46/L_silt: the runs at radius factor F
+of the folders joined by "+", pooled). For each, the tension each part of
 the sheet takes off (run-out, bend, trench part), the grains' normal force on it and the
 friction it mobilises (carried / normal), as mean +- standard deviation over the seeds at
 T_max and when the pull starts, beside the slippage estimate's own terms (F1, the capstan
@@ -20,10 +22,11 @@ def spread(values, scale=1.0, digits=1):
     return f"{statistics.mean(v):.{digits}f} +- {sd:.{digits}f}"
 
 
-def table(folder):
-    runs = sorted((folder / "runs").glob("seed*/summary.json"))
+def table(folders, size=None):
+    pattern = f"size{size}_seed*/summary.json" if size else "seed*/summary.json"
+    runs = [p for f in folders for p in sorted((f / "runs").glob(pattern))]
     res = [json.loads(p.read_text())["results"] for p in runs]
-    name = folder.name
+    name = folders[0].name
     est = res[0]["sheet_parts"]["slip_estimate"]
     print(f"| `{name}` ({len(res)} seeds) | carried (kN/m) | normal force (kN/m) |"
           " mobilised carried / normal | tension ratio across the bend |")
@@ -50,5 +53,9 @@ def table(folder):
 
 
 if __name__ == "__main__":
-    for arg in sys.argv[1:]:
-        table(Path(arg))
+    args = sys.argv[1:]
+    size = None
+    if args[:1] == ["--size"]:
+        size, args = args[1], args[2:]
+    for arg in args:
+        table([Path(a) for a in arg.split("+")], size)
