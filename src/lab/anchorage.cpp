@@ -46,7 +46,53 @@ std::vector<Point2> sheet_nodes(const std::vector<Point2>& corners, double eleme
   return nodes;
 }
 
+std::optional<SheetBend> sheet_bend(const AnchorGeometry& g, double y0) {
+  const auto c = sheet_corners(g, y0);
+  if (c.size() < 3) return std::nullopt;
+  SheetBend b;
+  b.corner = c[1];
+  const Point2 u1 = (c[1] - c[0]).normalized(), u2 = (c[2] - c[1]).normalized();
+  b.turn = std::abs(std::atan2(cross(u1, u2), u1.dot(u2)));
+  b.radius = g.edge_radius;
+  // The arc touches both straight parts at tan(turn / 2) x radius from the corner; its
+  // centre lies a radius inside the turn (below the run-out: the sheet turns clockwise).
+  const double a = b.radius * std::tan(0.5 * b.turn);
+  b.start = b.corner - a * u1;
+  b.end = b.corner + a * u2;
+  b.centre = b.start + b.radius * Point2(u1.y(), -u1.x());
+  const Point2 mid_dir = (u2 - u1).normalized();  // from the corner towards the centre
+  b.middle = b.radius > 0.0 ? Point2(b.centre - b.radius * mid_dir) : b.corner;
+  return b;
+}
+
+std::vector<Point2> sheet_path_nodes(const AnchorGeometry& g, double y0, double element_length) {
+  auto corners = sheet_corners(g, y0);
+  const auto b = sheet_bend(g, y0);
+  if (!b || b->radius <= 0.0) return sheet_nodes(corners, element_length);
+  // The arc's nodes, equally spaced in angle, become corners of the polyline: each arc
+  // piece is then one element.
+  const int n =
+      std::max(1, static_cast<int>(std::ceil(b->radius * b->turn / element_length - 1e-9)));
+  std::vector<Point2> path = {corners[0]};
+  const Point2 r0 = b->start - b->centre;
+  for (int j = 0; j <= n; ++j) {
+    const double phi = -b->turn * static_cast<double>(j) / n;  // clockwise
+    const double cs = std::cos(phi), sn = std::sin(phi);
+    path.push_back(b->centre + Point2(cs * r0.x() - sn * r0.y(), sn * r0.x() + cs * r0.y()));
+  }
+  path.insert(path.end(), corners.begin() + 2, corners.end());
+  return sheet_nodes(path, element_length);
+}
+
 bool overlaps_trench(const AnchorGeometry& g, double y0, const Point2& x, double r) {
+  if (g.edge_radius > 0.0) {
+    // The rounded edge: within the arc's angle, seen from its centre, the foundation ends
+    // at the arc.
+    const auto b = sheet_bend(g, y0);
+    const Point2 q = x - b->centre, s0 = b->start - b->centre, s1 = b->end - b->centre;
+    const bool in_sector = cross(s0, q) <= 0.0 && cross(q, s1) <= 0.0;
+    if (in_sector && q.norm() + r > b->radius) return true;
+  }
   if (g.shape == "L") {
     const Point2 lo(g.runout_length, y0 - g.trench_depth), hi(g.runout_length + g.trench_width, y0);
     const Point2 q = x.cwiseMax(lo).cwiseMin(hi);

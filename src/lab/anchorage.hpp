@@ -3,10 +3,12 @@
 // The sheet leaves the front wall (x = 0) at the run-out level y0 and runs horizontally
 // for runout_length; an L-shaped anchor then goes straight down the front side of a
 // trench (width trench_width behind it) to trench_depth; a V-shaped anchor goes down
-// the front flank of a V trench (top width trench_width) to its apex.
+// the front flank of a V trench (top width trench_width) to its apex. The trench's front
+// edge, which the sheet turns round, may be rounded (edge_radius).
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "lab/pullout_settings.hpp"
@@ -23,7 +25,23 @@ std::vector<Point2> sheet_corners(const AnchorGeometry& g, double y0);
 // element_length, with a node on every corner.
 std::vector<Point2> sheet_nodes(const std::vector<Point2>& corners, double element_length);
 
-// True when a disc (centre x, radius r) overlaps the excavated trench below y0.
+// The bend of an L or V (none for a run-out): where the run-out turns down the trench's
+// front side, round the trench's front edge when g.edge_radius > 0. The arc of that radius
+// touches the run-out at `start` and the trench side at `end`; `middle` is the arc's
+// midpoint (the corner itself when the edge is sharp).
+struct SheetBend {
+  Point2 corner, centre, start, end, middle;
+  double radius = 0.0;
+  double turn = 0.0;  // rad, the angle the sheet turns through (pi / 2 for an L)
+};
+std::optional<SheetBend> sheet_bend(const AnchorGeometry& g, double y0);
+
+// The sheet's nodes: sheet_nodes along the corners, with the bend rounded to an arc of
+// equal elements (each no longer than element_length) when the edge is rounded.
+std::vector<Point2> sheet_path_nodes(const AnchorGeometry& g, double y0, double element_length);
+
+// True when a disc (centre x, radius r) overlaps the excavated trench below y0, the
+// rounded trench edge included (the foundation outside the arc is cut away).
 bool overlaps_trench(const AnchorGeometry& g, double y0, const Point2& x, double r);
 
 // Resistance of an anchorage whose every face has the shear strength

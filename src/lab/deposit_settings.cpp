@@ -44,6 +44,7 @@ void read_sheet(TableReader& r, double radius, SheetSettings& s) {
   s.mass_per_area = sh->positive("mass_per_area", s.mass_per_area);
   s.thickness = sh->positive("thickness", s.thickness);
   s.bending = sh->non_negative("bending_stiffness", 0.0);
+  s.rest_flat = sh->choice("rest_shape", "flat", {"flat", "as_laid"}) == "flat";
   s.mass_scaling = sh->boolean("mass_scaling", true);
   s.node_mass_factor = sh->non_negative("node_mass_factor", 0.0);
   if (s.node_mass_factor > 0.0 && s.node_mass_factor < 1.0)

@@ -33,9 +33,13 @@ struct SheetSettings {
   double stiffness_J = 1e5;     // N/m
   double element_length = 0.0;  // 0: the mean grain diameter
   double interface_friction_deg = 34.0;
-  double mass_per_area = 0.5;     // kg/m^2
-  double thickness = 0.002;       // m (contact radius of the elements is half of it)
-  double bending = 0.0;           // N m/rad per m width at each node
+  double mass_per_area = 0.5;  // kg/m^2
+  double thickness = 0.002;    // m (contact radius of the elements is half of it)
+  double bending = 0.0;        // N m/rad per m width at each node
+  // The shape the bending stiffness returns the sheet to: flat (as off the roll; the
+  // sheet is held in its laid shape until the soil around it is placed), or the shape it
+  // was laid in (its rest turns then travel with the material as it is pulled).
+  bool rest_flat = true;
   bool mass_scaling = true;       // raise node masses so the sheet does not set the time step
   double node_mass_factor = 0.0;  // > 0: this factor instead of the estimate (mass_scaling)
 };

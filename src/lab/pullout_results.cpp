@@ -107,11 +107,15 @@ void start_pull(Pull& u, const World<2>& w, const Particles<2>& P, const Pullout
   u.t_max = u.d_at_max = u.soil_at_max = u.displacement = 0.0;
   u.soil_median_at_max = u.near_at_max = u.nodes_at_max = 0.0;
   u.pull_start = w.step;
-  // The bend: the sheet's second corner (the end of the run-out), where an L or V turns.
-  const auto corners = sheet_corners(s.anchor, y0 + 0.5 * s.thickness);
-  u.has_corner = corners.size() > 2 ? 1 : 0;
-  u.corner = corners[1];
+  // The bend: where an L or V turns from the run-out (the middle of the arc round a
+  // rounded trench edge, with the band reaching both its ends).
+  const auto bend = sheet_bend(s.anchor, y0 + 0.5 * s.thickness);
+  u.has_corner = bend ? 1 : 0;
+  u.corner = bend ? bend->middle : Vec::Zero();
   u.corner_band = std::max(2.0 * s.radius, s.element_length);
+  if (bend)
+    u.corner_band = std::max(
+        u.corner_band, 2.0 * bend->radius * std::sin(0.25 * bend->turn) + 0.5 * s.element_length);
   u.parts_sum = u.parts_first = u.parts_at_max = SheetPartLoads{};
   u.parts_first_set = 0;
 }
@@ -199,10 +203,15 @@ void write_pullout_states(const std::string& path_grains, const std::string& pat
     g.row({static_cast<double>(P.id[i]), P.pos[i].x(), P.pos[i].y(), P.radius[i],
            static_cast<double>(column_by_id[P.id[i]])});
   HistoryCsv sh;
-  sh.open(path_sheet, {"node", "x", "y", "tension"});
-  for (std::size_t i = 0; i < S.nodes(); ++i)
+  // Per node: its position, the tension of the element that starts there, and at the
+  // interior nodes the turn and the bending moment (N m/m) there.
+  sh.open(path_sheet, {"node", "x", "y", "tension", "turn", "rest_turn", "moment"});
+  for (std::size_t i = 0; i < S.nodes(); ++i) {
+    const bool interior = i > 0 && i < S.elements() && S.next[i - 1] != kNoElement;
     sh.row({static_cast<double>(i), S.pos[i].x(), S.pos[i].y(),
-            i < S.elements() ? S.tension[i] : 0.0});
+            i < S.elements() ? S.tension[i] : 0.0, interior ? S.turn_angle(i - 1) : 0.0,
+            interior ? S.rest_turn[i - 1] : 0.0, interior ? S.bending_moment(i - 1) : 0.0});
+  }
 }
 
 }  // namespace geodem

@@ -56,6 +56,19 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
                   format_number(grain) +
                   " m): the trench cannot be filled; widen it or use smaller grains");
   }
+  if (g.shape != "runout") {
+    g.edge_radius = a->non_negative("edge_radius", 0.0);
+    // The arc must leave some of both straight parts: it touches them tan(turn / 2) x
+    // radius from the corner.
+    const double half = g.shape == "V" ? 0.5 * g.trench_width : 0.0;
+    const double side = std::hypot(half, g.trench_depth);
+    const double reach = g.edge_radius * std::tan(0.5 * std::atan2(g.trench_depth, half));
+    if (reach >= std::min(g.runout_length, side))
+      a->fail("edge_radius", "the rounded edge reaches " + format_number(reach) +
+                                 " m along each part: expected less than the run-out (" +
+                                 format_number(g.runout_length) + " m) and the trench side (" +
+                                 format_number(side) + " m)");
+  }
   const double end_x = g.runout_length + g.trench_width;
   if (end_x >= s.box_length)
     a->fail(g.shape == "runout" ? "runout_length" : "trench_width",

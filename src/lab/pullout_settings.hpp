@@ -24,6 +24,8 @@ struct AnchorGeometry {
   // Above the run-out level at x = 0: "free" (the cover ends in a free face, as at the
   // crest of a slope) or "wall" (a rigid, smooth front wall, as in a pull-out box).
   std::string front = "wall";
+  // Radius of the trench's front edge, round which the sheet turns (L, V; 0: sharp).
+  double edge_radius = 0.0;
 };
 
 struct PulloutSettings : DepositedSoil, SheetSettings, DepositTime {

@@ -199,9 +199,9 @@ void PulloutRun::deposit_to(double height, double x0, double x1, const std::stri
 }
 
 void PulloutRun::lay_sheet() {
-  const auto corners = sheet_corners(s.anchor, y0 + 0.5 * s.thickness);
-  const auto nodes = sheet_nodes(corners, s.element_length);
+  const auto nodes = sheet_path_nodes(s.anchor, y0 + 0.5 * s.thickness, s.element_length);
   std::vector<Vec> pts(nodes.begin(), nodes.end());
+  // (its rest turns are the laid shape until the fill holds it: finish_fill)
   w.spars.add_chain("sheet", pts, s.stiffness_J, s.mass_per_area, s.thickness, kSheet, s.bending);
   w.spars.flags[0] = kNodeDriven;  // the clamp, still until the pull
 }
@@ -253,6 +253,9 @@ void PulloutRun::finish_fill() {
                 }));
   hold_grains(w, grains_where(w, is_foundation), false);
   prep["fill_grains"] = count_grains([&](std::size_t i) { return !is_foundation(i); });
+  // A sheet flat at rest, as off the roll: the soil now holds it in its laid shape, and
+  // no turn travels with the material as it is pulled round the bend.
+  if (s.rest_flat) std::fill(w.spars.rest_turn.begin(), w.spars.rest_turn.end(), 0.0);
   if (s.anchor.front == "free") {
     // The front wall now holds the foundation only: the cover's face is free.
     Wall<2>& front = w.walls[kFrontWall];

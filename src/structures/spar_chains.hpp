@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -125,6 +126,12 @@ struct SparChains {
     const auto f = static_cast<std::size_t>(next[e]);
     const Vec u2 = pos[node_b[f]] - pos[node_a[f]];
     return std::atan2(u1.x() * u2.y() - u1.y() * u2.x(), u1.dot(u2));
+  }
+
+  // 2D: the bending moment at the node after element e (N m/m), k (turn - rest turn).
+  double bending_moment(std::size_t e) const {
+    return chains[chain_of[e]].bending *
+           std::remainder(turn_angle(e) - rest_turn[e], 2.0 * std::numbers::pi);
   }
 
   double length(std::size_t e) const { return (pos[node_b[e]] - pos[node_a[e]]).norm(); }

@@ -1,7 +1,8 @@
 // The anchorage geometry and the design estimates (lab/anchorage.hpp) against hand
 // calculations: friction on both faces of a run-out, the at-rest lateral pressure on the
 // trench part, the capstan factor at the bend, adhesion; the soil-mass estimate with the
-// soil's strength and no capstan; the sheet's nodes fall on its corners.
+// soil's strength and no capstan; the sheet's nodes fall on its corners, or on the arc
+// round a rounded trench edge.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -151,6 +152,76 @@ TEST(Anchorage, NodesOnEveryCornerAndTrenchRegions) {
   g.trench_width = 1.0;
   EXPECT_TRUE(overlaps_trench(g, 0.7, Point2(1.5, 0.5), 0.0));
   EXPECT_FALSE(overlaps_trench(g, 0.7, Point2(1.1, 0.3), 0.01));
+}
+
+// Turn from segment (a, b) to segment (b, c), clockwise negative.
+double turn(const Point2& a, const Point2& b, const Point2& c) {
+  const Point2 u = b - a, v = c - b;
+  return std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
+}
+
+TEST(Anchorage, RoundedEdgeLaysTheSheetOnAnArc) {
+  for (const char* shape : {"L", "V"}) {
+    AnchorGeometry g = anchor(shape);
+    g.runout_length = 1.0;
+    g.trench_depth = 0.5;
+    g.trench_width = std::string(shape) == "V" ? 0.8 : 0.3;
+    g.free_length = 0.05;
+    g.edge_radius = 0.1;
+    const double y0 = 0.7, L = 0.024;
+    const auto b = sheet_bend(g, y0);
+    ASSERT_TRUE(b.has_value());
+    const double beta = std::string(shape) == "V" ? std::atan2(0.5, 0.4) : 0.5 * std::numbers::pi;
+    EXPECT_NEAR(b->turn, beta, 1e-12);
+    // The arc touches the run-out and the trench side a radius from its centre, at
+    // tan(beta / 2) x radius from the corner.
+    const double reach = 0.1 * std::tan(0.5 * beta);
+    EXPECT_NEAR((b->start - b->corner).norm(), reach, 1e-12);
+    EXPECT_NEAR((b->end - b->corner).norm(), reach, 1e-12);
+    EXPECT_NEAR(b->start.y(), y0, 1e-12);
+    EXPECT_NEAR((b->centre - b->start).norm(), 0.1, 1e-12);
+    EXPECT_NEAR((b->centre - b->end).norm(), 0.1, 1e-12);
+    EXPECT_NEAR((b->centre - b->middle).norm(), 0.1, 1e-12);
+    const auto nodes = sheet_path_nodes(g, y0, L);
+    // Every node on the run-out, the arc or the trench side; no element longer than L;
+    // the turns add up to the bend, and the arc's are equal.
+    double total = 0.0, arc_turn = -1.0;
+    int arc_nodes = 0;
+    for (std::size_t k = 0; k + 1 < nodes.size(); ++k) {
+      EXPECT_LE((nodes[k + 1] - nodes[k]).norm(), L + 1e-12);
+      if (k == 0) continue;
+      const double t = turn(nodes[k - 1], nodes[k], nodes[k + 1]);
+      total += t;
+      if (std::abs(t) > 1e-9) {
+        ++arc_nodes;
+        EXPECT_NEAR((nodes[k] - b->centre).norm(), 0.1, 1e-12);
+        // The arc's first and last nodes turn by half a piece: the straight parts are
+        // tangent to it.
+        const bool end_of_arc =
+            (nodes[k] - b->start).norm() < 1e-12 || (nodes[k] - b->end).norm() < 1e-12;
+        if (!end_of_arc) {
+          if (arc_turn < 0.0) arc_turn = std::abs(t);
+          EXPECT_NEAR(std::abs(t), arc_turn, 1e-9);
+        }
+      }
+    }
+    EXPECT_NEAR(total, -beta, 1e-9);
+    EXPECT_GE(arc_nodes, static_cast<int>(std::ceil(0.1 * beta / L)));
+    // The foundation outside the arc is cut away; inside it stays.
+    const Point2 outside = b->centre + 0.099 * (b->middle - b->centre).normalized();
+    EXPECT_TRUE(overlaps_trench(g, y0, outside, 0.002));
+    EXPECT_FALSE(overlaps_trench(g, y0, outside, 0.0));
+    EXPECT_FALSE(overlaps_trench(g, y0, b->centre, 0.05));
+    EXPECT_TRUE(overlaps_trench(g, y0, b->corner - Point2(0.005, 0.005), 0.0));
+  }
+  // A sharp edge: no arc, the nodes of sheet_nodes.
+  AnchorGeometry g = anchor("L");
+  g.runout_length = 1.0;
+  g.trench_depth = 0.5;
+  g.trench_width = 0.3;
+  EXPECT_EQ(sheet_path_nodes(g, 0.7, 0.024), sheet_nodes(sheet_corners(g, 0.7), 0.024));
+  EXPECT_EQ(sheet_bend(g, 0.7)->middle, sheet_bend(g, 0.7)->corner);
+  EXPECT_FALSE(sheet_bend(anchor("runout"), 0.7).has_value());
 }
 
 }  // namespace

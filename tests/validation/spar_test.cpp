@@ -11,6 +11,9 @@
 //   crosses from one element to the next; at a node it is counted once;
 // - bending forces are minus the gradient of k_b (phi - phi0)^2 / 2 (central differences),
 //   with no net force or moment;
+// - a sheet flat at rest, held bent on a circular arc, is in pure bending: the moment
+//   k_b x (turn per node) is the same at every arc node and no force acts on the arc's
+//   inner nodes; the couple that bends it acts where the arc meets the straight parts;
 // - an element pressed end to end stops folding up at the sheet's thickness: its free node
 //   comes back elastically (the spring J / L0 of a linear oscillator: deepest push
 //   v sqrt(m / k), speed restored), and a stiff bent sheet's end element never turns inside
@@ -407,6 +410,40 @@ TEST(SparChain2D, BendingForcesDeriveFromTheirPotential) {
   EXPECT_LT(worst / scale, 1e-6);
   EXPECT_LT(net.norm(), 1e-12 * scale);
   EXPECT_LT(std::abs(moment), 1e-12 * scale);
+}
+
+TEST(SparChain2D, FlatSheetOnAnArcIsInPureBending) {
+  World<2> w;
+  const auto mat = add_material(w, linear_material(1e5, 5e4, 0.5, 1.0));
+  w.resolve_pair_laws();
+  const double kb = 50.0, R = 0.1, step_angle = 0.1;
+  // Two straight elements, 12 arc pieces of radius R (a quarter turn and a bit), two more.
+  std::vector<Vec<2>> p = {Vec<2>(-2 * R * step_angle, R), Vec<2>(-R * step_angle, R)};
+  const int pieces = 12;
+  for (int j = 0; j <= pieces; ++j)
+    p.emplace_back(R * std::sin(j * step_angle), R * std::cos(j * step_angle));
+  const Vec<2> end = p.back(),
+               tangent(std::cos(pieces * step_angle), -std::sin(pieces * step_angle));
+  p.push_back(end + R * step_angle * tangent);
+  p.push_back(end + 2 * R * step_angle * tangent);
+  w.spars.add_chain("sheet", p, 0.0, 0.1, 0.0, mat, kb);  // J = 0: bending alone
+  auto& S = w.spars;
+  std::fill(S.rest_turn.begin(), S.rest_turn.end(), 0.0);  // flat at rest
+  for (auto& f : S.force) f.setZero();
+  spar_element_forces(w);
+  // Chords of equal arc pieces turn by step_angle at the arc's inner nodes and by half of
+  // it where the arc meets a tangent straight part.
+  const std::size_t first_arc = 2, last_arc = first_arc + pieces;
+  double largest = 0.0;
+  for (const auto& f : S.force) largest = std::max(largest, f.norm());
+  for (std::size_t i = first_arc + 1; i < last_arc; ++i)
+    EXPECT_NEAR(S.bending_moment(i - 1), -kb * step_angle, 1e-9 * kb);
+  for (std::size_t i = first_arc + 2; i + 1 < last_arc; ++i)
+    EXPECT_LT(S.force[i].norm(), 1e-9 * largest) << "arc node " << i;
+  // The bending couple is k_b step_angle over an element's length, at the arc's ends.
+  report("flat sheet on an arc: largest node force (N/m)", largest);
+  EXPECT_GT(largest, 0.5 * kb * step_angle / (R * step_angle));
+  EXPECT_LT(largest, 3.0 * kb * step_angle / (R * step_angle));
 }
 
 }  // namespace
