@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "io/output_files.hpp"
+#include "io/progress.hpp"
 #include "scene/scene_settings.hpp"
 
 namespace geodem {
@@ -64,7 +65,7 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
     const double side = std::hypot(half, g.trench_depth);
     const double reach = g.edge_radius * std::tan(0.5 * std::atan2(g.trench_depth, half));
     if (reach >= std::min(g.runout_length, side))
-      a->fail("edge_radius", "the rounded edge reaches " + format_number(reach) +
+      a->fail("edge_radius", "the rounded edge reaches " + format_sig(reach) +
                                  " m along each part: expected less than the run-out (" +
                                  format_number(g.runout_length) + " m) and the trench side (" +
                                  format_number(side) + " m)");
