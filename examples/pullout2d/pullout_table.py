@@ -26,7 +26,8 @@ def main(argv):
         runs = [json.loads((out / name / "runs" / r / "summary.json").read_text())
                 for r in g["runs"]]
         design = [r["results"]["design_mechanism"] for r in runs]
-        ratio = [r["results"]["mechanism_measures"]["soil_ratio"] for r in runs]
+        # (rounded first, so that a median a hair below zero prints as 0.000, not -0.000)
+        ratio = [round(r["results"]["mechanism_measures"]["soil_ratio"], 3) + 0.0 for r in runs]
         t, slip, soil = g["T_max"], g["T_analytic_slip"], g["T_analytic_soil"]
         mech = ", ".join(f"{v} {k}" for k, v in sorted(g["mechanisms"].items()))
         print(f"| `{name}` | {t['count']} | {t['mean'] / 1e3:.1f} +- {t['std'] / 1e3:.1f} |"
