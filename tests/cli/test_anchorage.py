@@ -5,6 +5,7 @@ Run by CTest: python3 test_anchorage.py GEODEM_BINARY REPO_ROOT
 """
 import csv
 import json
+import math
 import os
 import subprocess
 import sys
@@ -244,6 +245,62 @@ soil_friction_deg = 30.0
         self.assertTrue((out / "pullout_seeds.png").exists())
         for k in (4, 5, 6):
             self.assertTrue((out / "runs" / f"seed{k}" / "history.csv").exists())
+
+    def test_sheet_flat_at_rest_round_a_rounded_edge(self):
+        # An L whose trench edge is rounded: the sheet lies on the arc; flat at rest (the
+        # default) its rest turns are zero once the fill holds it, and its moments are
+        # k_b x turn; as laid, its rest turns keep the laid shape, a quarter turn in all.
+        pullout = """
+kind = "pullout"
+[box]
+length = 0.6
+foundation = 0.12
+[soil]
+density = 2600.0
+young = 2e7
+friction_deg = 30.0
+radius = 0.006
+[anchor]
+shape = "L"
+runout_length = 0.3
+cover = 0.06
+trench_depth = 0.08
+trench_width = 0.05
+edge_radius = 0.03
+[sheet]
+interface_friction_deg = 20.0
+bending_stiffness = 0.5
+[pull]
+max_displacement = 0.004
+history_points = 10
+[analytic]
+soil_friction_deg = 30.0
+[output]
+plots = false
+vtk = false
+"""
+        k_b, element = 0.5, 0.012
+        sheets = {}
+        for shape in ("flat", "as_laid"):
+            out = self.dir / shape
+            r = run("run", self.write(pullout, "L.toml"), "--out", str(out), "--quiet",
+                    "--set", f'sheet.rest_shape="{shape}"')
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(out / "states" / "sheet_initial.csv") as f:
+                sheets[shape] = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        flat, laid = sheets["flat"], sheets["as_laid"]
+        # Nodes: the run-out from the free end (4 radii out) to the arc, the arc, the trench
+        # side below it, each cut into elements no longer than the default 2 radii.
+        nodes = (1 + math.ceil((0.024 + 0.3 - 0.03) / element)
+                 + math.ceil(0.03 * math.pi / 2 / element) + math.ceil((0.08 - 0.03) / element))
+        self.assertEqual(len(flat), nodes)
+        self.assertEqual(len(laid), nodes)
+        self.assertTrue(all(n["rest_turn"] == 0.0 for n in flat))
+        for n in flat:
+            self.assertAlmostEqual(n["moment"], k_b * n["turn"], delta=1e-12)
+        self.assertAlmostEqual(sum(n["rest_turn"] for n in laid), -math.pi / 2, delta=1e-9)
+        for n in laid:
+            self.assertAlmostEqual(n["moment"], k_b * (n["turn"] - n["rest_turn"]), delta=1e-12)
 
 
 if __name__ == "__main__":
