@@ -2,10 +2,10 @@
 # Grain refinement of the L-shaped anchors: each example's 3 seeds at grain sizes 1,
 # 1/sqrt(2) and 1/2 times its own (same micro parameters, geometry and sheet; up to about
 # 15,000 grains a run), pulled to 200 mm (the peaks lie at 40-190 mm). Prints each
-# summary's refinement block; the figures go to expected/. About 35 minutes on 2 cores.
+# summary's refinement block; the figures go to expected/. About 37 minutes on 2 cores.
 #
 # More seeds: FIRST_SEED=4 FACTORS='[1.0, 0.5]' refine_L.sh runs/refine46 runs seeds 4-6 at
-# the full and the half grain size (about 31 minutes) and prints the same lines; its figures
+# the full and the half grain size (about 33 minutes) and prints the same lines; its figures
 # stay in the output folder (expected/ keeps those of seeds 1-3). Arguments after OUT go to
 # every run (e.g. --set sheet.bending_stiffness=50); expected/ is then left as it is.
 set -euo pipefail
