@@ -6,6 +6,7 @@
 
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
+#include "lab/anchorage.hpp"
 #include "scene/scene_settings.hpp"
 
 namespace geodem {
@@ -59,11 +60,11 @@ PulloutSettings read_pullout(const toml::table& root, const std::string& file) {
   }
   if (g.shape != "runout") {
     g.edge_radius = a->non_negative("edge_radius", 0.0);
-    // The arc must leave some of both straight parts: it touches them tan(turn / 2) x
-    // radius from the corner.
-    const double half = g.shape == "V" ? 0.5 * g.trench_width : 0.0;
-    const double side = std::hypot(half, g.trench_depth);
-    const double reach = g.edge_radius * std::tan(0.5 * std::atan2(g.trench_depth, half));
+    // The arc must leave some of both straight parts.
+    const auto corners = sheet_corners(g, 0.0);
+    const auto bend = sheet_bend(g, 0.0);
+    const double reach = (bend->start - bend->corner).norm();
+    const double side = (corners[2] - corners[1]).norm();
     if (reach >= std::min(g.runout_length, side))
       a->fail("edge_radius", "the rounded edge reaches " + format_sig(reach) +
                                  " m along each part: expected less than the run-out (" +

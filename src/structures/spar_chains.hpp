@@ -128,10 +128,14 @@ struct SparChains {
     return std::atan2(u1.x() * u2.y() - u1.y() * u2.x(), u1.dot(u2));
   }
 
-  // 2D: the bending moment at the node after element e (N m/m), k (turn - rest turn).
+  // 2D: how far the node after element e is bent from its rest turn (rad, in (-pi, pi]).
+  double turn_from_rest(std::size_t e) const {
+    return std::remainder(turn_angle(e) - rest_turn[e], 2.0 * std::numbers::pi);
+  }
+
+  // 2D: the bending moment there (N m/m), k (turn - rest turn).
   double bending_moment(std::size_t e) const {
-    return chains[chain_of[e]].bending *
-           std::remainder(turn_angle(e) - rest_turn[e], 2.0 * std::numbers::pi);
+    return chains[chain_of[e]].bending * turn_from_rest(e);
   }
 
   double length(std::size_t e) const { return (pos[node_b[e]] - pos[node_a[e]]).norm(); }

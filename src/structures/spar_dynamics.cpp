@@ -49,7 +49,7 @@ void spar_element_forces(World<D>& world) {
       for (std::uint32_t k = 0; k + 2 < c.node_count; ++k) {
         const std::size_t e = c.first_element + k;
         const auto f = static_cast<std::size_t>(S.next[e]);
-        const double M = S.bending_moment(e);
+        const double M = c.bending * S.turn_from_rest(e);  // (the chain's k at hand)
         const Vec u1 = S.pos[S.node_b[e]] - S.pos[S.node_a[e]];
         const Vec u2 = S.pos[S.node_b[f]] - S.pos[S.node_a[f]];
         const Vec p1(-u1.y(), u1.x()), p2(-u2.y(), u2.x());  // perp(u) |u|
