@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Re-measures the interface shear examples and refreshes expected/: both soils with their
 # calibrated interface (plots and summary figures), the table of macroscopic against local
-# interface friction (delta_table.py, 3 seeds) and, with --calibrate, the two interface
-# calibrations that set the presets' [interface] tables. Run from the repository root after
-# scripts/build.sh; OUT defaults to runs/interface_shear2d. About 8 minutes on 2 cores
+# interface friction (delta_table.py, 3 seeds) and, with --calibrate, first the two interface
+# calibrations, which set the presets' [interface] tables (set_preset_interface.py). Run
+# from the repository root after scripts/build.sh; OUT defaults to runs/interface_shear2d. About 8 minutes on 2 cores
 # (4 more with --calibrate).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -12,15 +12,19 @@ if [ "${1:-}" = "--calibrate" ]; then CALIBRATE=1; shift; fi
 OUT=${1:-runs/interface_shear2d}
 EXPECTED=examples/interface_shear2d/expected
 mkdir -p "$OUT" "$EXPECTED"
+if [ $CALIBRATE = 1 ]; then
+  # First the calibrations, whose results the presets (and so the examples below) take.
+  for soil in sand silt; do
+    ./build/geodem run "examples/interface_shear2d/calibrate_$soil.toml" --out "$OUT/calibrate_$soil" --overwrite \
+      --threads 2 --quiet
+    cp "$OUT/calibrate_$soil/interface_calibration.png" "$EXPECTED/${soil}_interface_calibration.png"
+  done
+  python3 examples/interface_shear2d/set_preset_interface.py "$OUT"
+fi
 for soil in sand silt; do
   ./build/geodem run "examples/interface_shear2d/$soil.toml" --out "$OUT/$soil" --overwrite --threads 2 --quiet
   cp "$OUT/$soil/interface_shear.png" "$EXPECTED/${soil}_interface_shear.png"
   cp "$OUT/$soil/interface_envelope.png" "$EXPECTED/${soil}_interface_envelope.png"
-  if [ $CALIBRATE = 1 ]; then
-    ./build/geodem run "examples/interface_shear2d/calibrate_$soil.toml" --out "$OUT/calibrate_$soil" --overwrite \
-      --threads 2 --quiet
-    cp "$OUT/calibrate_$soil/interface_calibration.png" "$EXPECTED/${soil}_interface_calibration.png"
-  fi
 done
 python3 - "$OUT" > "$EXPECTED/examples.md" <<'PY'
 import json, sys

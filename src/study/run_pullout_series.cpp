@@ -1,10 +1,10 @@
 // A pull-out over several seeds and grain sizes (docs/lab_tests.md, "Pull-out over seeds
 // and grain sizes"): the scenario's runs with seeds seed, seed + 1, ... and, with
 // [refinement], the same again with the grains scaled by each factor (same micro
-// parameters, same geometry and sheet); the runs go side by side (StudyExecutor, as the
-// studies' runs). Reports, for each grain size, the mean, spread and range of T_max, of
-// the displacement at T_max and of the soil's displacement, the mechanisms, and the
-// capacity against d50 / cover with its extrapolation to fine grains.
+// parameters, same geometry and sheet, its elements scaled with the grains); the runs go side by
+// side (StudyExecutor, as the studies' runs). Reports, for each grain size, the mean, spread and
+// range of T_max, of the displacement at T_max and of the soil's displacement, the mechanisms, and
+// the capacity against d50 / cover with its extrapolation to fine grains.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -56,8 +56,12 @@ nlohmann::json run_pullout_series(const toml::table& root, const PulloutSettings
       r.scenario.erase("refinement");
       set_key(r.scenario, "seed", static_cast<std::int64_t>(seed));
       set_key(r.scenario, "soil.radius", s.radius * f);
-      // The same structure at every grain size: the sheet's elements and thickness too.
-      set_key(r.scenario, "sheet.element_length", s.element_length);
+      // The same structure at every grain size: the sheet's thickness and flexural rigidity
+      // (EI = bending stiffness per node x element length) stay; its elements shorten with
+      // the grains, as they are part of the interface's micro model (elements longer than
+      // the grains catch on them one after another: docs/anchorage_design.md).
+      set_key(r.scenario, "sheet.element_length", s.element_length * f);
+      set_key(r.scenario, "sheet.bending_stiffness", s.bending / f);
       set_key(r.scenario, "sheet.thickness", s.thickness);
       set_key(r.scenario, "output.plots", false);
       set_key(r.scenario, "output.vtk", false);

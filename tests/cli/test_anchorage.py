@@ -246,6 +246,61 @@ soil_friction_deg = 30.0
         for k in (4, 5, 6):
             self.assertTrue((out / "runs" / f"seed{k}" / "history.csv").exists())
 
+    def test_refinement_shortens_the_sheet_elements_with_the_grains(self):
+        # Each grain size's run: grains scaled by the factor, the sheet's elements too (its
+        # discretisation belongs to the interface's micro model), its flexural rigidity
+        # (bending stiffness per node x element length) and thickness held.
+        pullout = """
+kind = "pullout"
+seed = 4
+[box]
+length = 0.6
+foundation = 0.08
+[soil]
+density = 2600.0
+young = 2e7
+friction_deg = 30.0
+radius = 0.008
+[anchor]
+runout_length = 0.35
+cover = 0.06
+[sheet]
+interface_friction_deg = 20.0
+element_length = 0.016
+bending_stiffness = 0.5
+thickness = 0.001
+[pull]
+max_displacement = 0.004
+history_points = 10
+[refinement]
+radius_factors = [1.0, 0.5]
+[analytic]
+soil_friction_deg = 30.0
+"""
+        import tomllib
+        out = self.dir / "refine"
+        r = run("run", self.write(pullout, "po.toml"), "--out", str(out), "--quiet",
+                "--threads", "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = json.loads((out / "summary.json").read_text())["results"]
+        self.assertEqual([g["radius_factor"] for g in res["groups"]], [1.0, 0.5])
+        runs = {}
+        for d in sorted((out / "runs").iterdir()):
+            sc = tomllib.loads((d / "scenario.toml").read_text())
+            with open(d / "states" / "sheet_initial.csv") as f:
+                nodes = sum(1 for _ in csv.DictReader(f))
+            runs[sc["soil"]["radius"]] = (sc["sheet"], nodes)
+        self.assertEqual(sorted(runs), [0.004, 0.008])
+        coarse, fine = runs[0.008], runs[0.004]
+        self.assertAlmostEqual(fine[0]["element_length"], 0.008, places=12)
+        self.assertAlmostEqual(fine[0]["bending_stiffness"], 1.0, places=12)
+        self.assertAlmostEqual(fine[0]["thickness"], coarse[0]["thickness"], places=12)
+        self.assertAlmostEqual(coarse[0]["element_length"] * coarse[0]["bending_stiffness"],
+                               fine[0]["element_length"] * fine[0]["bending_stiffness"],
+                               places=12)
+        # Twice the elements along the same sheet (a node on each end of each part).
+        self.assertLessEqual(abs(fine[1] - 1 - 2 * (coarse[1] - 1)), 2)
+
     def test_sheet_flat_at_rest_round_a_rounded_edge(self):
         # An L whose trench edge is rounded: the sheet lies on the arc; flat at rest (the
         # default) its rest turns are zero once the fill holds it, and its moments are

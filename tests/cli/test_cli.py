@@ -442,18 +442,29 @@ create = "initial"
         # sqrt(2 m / (2 J / l)), m = 0.5 kg/m2 x l (l = 2 x 8 mm, J = 1e5 N/m, safety 0.8).
         text = SMALL_PULLOUT.format(shape="runout", trench="").replace(
             "max_displacement = 0.03", "max_displacement = 0.002")
-        dts = {}
+        dts, factors = {}, {}
         for name, extra in (("estimate", ()), ("true_mass", ("--set", "sheet.node_mass_factor=1"))):
             out = self.dir / name
             r = run("run", self.write(text), "--out", str(out), "--quiet", *extra)
             self.assertEqual(r.returncode, 0, r.stderr)
             res = json.loads((out / "summary.json").read_text())["results"]
             dts[name] = res["dt"]
+            factors[name] = res["sheet"]["node_mass_factor"]
             if name == "true_mass":
                 self.assertEqual(res["sheet"]["node_mass_factor"], 1.0)
             else:
                 self.assertGreater(res["sheet"]["node_mass_factor"], 1.0)
         l, J = 0.016, 1e5
+        # The estimate sizes a node (2 J / l + 2 E of stiffness) to the grains' critical step
+        # in their packing: its own step, scaled, lies at most about twice the run's (more
+        # would be a sheet heavier than needed, which roughens the interface:
+        # docs/lab_tests.md, "The sheet's inertia"), and never below it.
+        f = factors["estimate"]
+        node_step = 0.8 * math.sqrt(2.0 * f * 0.5 * l / (2.0 * J / l + 2.0 * 2e7))
+        print(f"[ measured ] node mass factor {f:.4g}: the node's scaled step "
+              f"{node_step / dts['estimate']:.3f} x the run's")
+        self.assertGreaterEqual(node_step, dts["estimate"])
+        self.assertLess(node_step, 2.0 * dts["estimate"])
         bound = 0.8 * math.sqrt(2.0 * 0.5 * l / (2.0 * J / l))
         print(f"[ measured ] pull-out dt: estimate {dts['estimate']:.3g} s, true sheet mass "
               f"{dts['true_mass']:.3g} s (bound {bound:.3g} s)")
