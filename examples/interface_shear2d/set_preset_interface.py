@@ -17,11 +17,12 @@ ROOT = Path(__file__).resolve().parents[2]
 
 def interface_table(material, summary):
     itf = tomllib.loads(material.read_text())["interface"]
-    scatter = json.loads(summary.read_text())["results"]["verification"]["scatter"]
+    verification = json.loads(summary.read_text())["results"]["verification"]
+    scatter, seeds = verification["scatter"], verification["seeds"]
     return (
         "[interface]\n"
         f"local_friction_deg = {itf['local_friction_deg']:.4f}\n"
-        f"macro_friction_deg = {itf['macro_friction_deg']:.4f}   # verified, 3 fresh seeds: "
+        f"macro_friction_deg = {itf['macro_friction_deg']:.4f}   # verified, {seeds} fresh seeds: "
         f"+- {scatter['interface_friction_deg']:.2f} deg\n"
         f"macro_adhesion = {itf['macro_adhesion']:.1f}   # Pa (+- {scatter['interface_adhesion']:.0f})\n")
 
