@@ -98,9 +98,12 @@ class AnchorageTest(unittest.TestCase):
                 rise = float(row["dilation"])
                 # The servo holds the moving target within 1 % of sigma0 in every row.
                 self.assertLess(abs(sig - target), 0.01 * sigma0)
-                # The row's mean target against the law at the row's mid rise: within 3 %
-                # of sigma0, the change of k x rise within one of 50 rows.
-                self.assertLess(abs(target - (sigma0 + k * 0.5 * (prev + rise))), 0.03 * sigma0)
+                # The row's mean target against the law at the row's mid rise: within half
+                # the row's own change of k x rise (the target moves with the plate inside
+                # the row: a collapse of the soil can lower it by 10 % of sigma0 in one
+                # row) and 1 % of sigma0.
+                law = sigma0 + k * 0.5 * (prev + rise)
+                self.assertLess(abs(target - law), 0.5 * k * abs(rise - prev) + 0.01 * sigma0)
                 prev, moved = rise, max(moved, abs(sig - sigma0))
             self.assertGreater(moved, 0.1 * sigma0)  # the stiffness did act
         for t in res["tests"]:
