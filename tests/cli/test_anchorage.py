@@ -10,6 +10,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import tomllib
 import unittest
 from pathlib import Path
 
@@ -17,6 +18,22 @@ from small_scenarios import shear
 
 GEODEM = None
 ROOT = None
+
+# A small run-out box (its [sheet] table open last, for the caller's sheet keys).
+SMALL_RUNOUT = """[box]
+length = 0.6
+foundation = 0.08
+[soil]
+density = 2600.0
+young = 2e7
+friction_deg = 30.0
+radius = 0.008
+[anchor]
+runout_length = 0.35
+cover = 0.06
+[sheet]
+interface_friction_deg = 20.0
+"""
 
 def run(*args, timeout=600):
     return subprocess.run([GEODEM, *args], capture_output=True, text=True, timeout=timeout)
@@ -212,20 +229,7 @@ plots = false
 kind = "pullout"
 seed = 4
 seeds = 3
-[box]
-length = 0.6
-foundation = 0.08
-[soil]
-density = 2600.0
-young = 2e7
-friction_deg = 30.0
-radius = 0.008
-[anchor]
-runout_length = 0.35
-cover = 0.06
-[sheet]
-interface_friction_deg = 20.0
-[pull]
+""" + SMALL_RUNOUT + """[pull]
 max_displacement = 0.01
 history_points = 20
 [analytic]
@@ -256,20 +260,7 @@ soil_friction_deg = 30.0
         pullout = """
 kind = "pullout"
 seed = 4
-[box]
-length = 0.6
-foundation = 0.08
-[soil]
-density = 2600.0
-young = 2e7
-friction_deg = 30.0
-radius = 0.008
-[anchor]
-runout_length = 0.35
-cover = 0.06
-[sheet]
-interface_friction_deg = 20.0
-element_length = 0.016
+""" + SMALL_RUNOUT + """element_length = 0.016
 bending_stiffness = 0.5
 thickness = 0.001
 [pull]
@@ -280,7 +271,6 @@ radius_factors = [1.0, 0.5]
 [analytic]
 soil_friction_deg = 30.0
 """
-        import tomllib
         out = self.dir / "refine"
         r = run("run", self.write(pullout, "po.toml"), "--out", str(out), "--quiet",
                 "--threads", "2")
