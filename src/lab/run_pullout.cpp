@@ -176,7 +176,7 @@ void PulloutRun::deposit_to(double height, double x0, double x1, const std::stri
     if (!in_settle) {
       const bool empty = grain_count() == 0;
       if (!(empty || surface_level(w, x0, x1) < height)) break;
-      const double base = empty ? 0.0 : top_of_grains(w);
+      const double base = empty ? 0.0 : top_of_solids(w);
       const double from = empty ? 0.0 : surface_level(w, x0, x1);
       const double dense = std::min(s.layer_thickness, height - from + 2.0 * s.radius);
       // Layers still to come, this one included (for the progress line; a layer settles

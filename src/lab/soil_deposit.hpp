@@ -89,6 +89,17 @@ inline double top_of_grains(const World<2>& w) {
   return largest_over_ranks(w, t);
 }
 
+// The highest point of the grains and of the spar chains' elements (a sheet laid on the
+// soil): a layer's cloud starts there, clear of both. The chains are whole on every rank.
+inline double top_of_solids(const World<2>& w) {
+  double t = top_of_grains(w);
+  const auto& S = w.spars;
+  for (std::size_t e = 0; e < S.elements(); ++e)
+    t = std::max({t, S.pos[S.node_a[e]].y() + S.half_thickness[e],
+                  S.pos[S.node_b[e]].y() + S.half_thickness[e]});
+  return t;
+}
+
 // Median over 12 columns of [x0, x1] of the highest grain top: the free surface's level
 // (a grain bouncing above it does not raise it).
 inline double surface_level(const World<2>& w, double x0, double x1) {

@@ -253,6 +253,31 @@ soil_friction_deg = 30.0
         for k in (4, 5, 6):
             self.assertTrue((out / "runs" / f"seed{k}" / "history.csv").exists())
 
+    def test_a_thick_sheet_is_covered_without_overlap(self):
+        # A sheet half a grain radius thick: each layer's cloud of grains starts above the
+        # sheet, not at the top of the grains under it (from there the smallest grains
+        # overlapped the sheet by two thirds of their radius, and the run stopped as unstable).
+        pullout = """
+kind = "pullout"
+seed = 4
+""" + SMALL_RUNOUT.replace("radius = 0.008", "radius = 0.004") + """element_length = 0.008
+bending_stiffness = 0.5
+thickness = 0.002
+[pull]
+max_displacement = 0.004
+history_points = 10
+[analytic]
+soil_friction_deg = 30.0
+"""
+        out = self.dir / "thick"
+        r = run("run", self.write(pullout, "po.toml"), "--out", str(out), "--quiet",
+                "--threads", "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = json.loads((out / "summary.json").read_text())
+        self.assertEqual(s["status"], "completed")
+        self.assertGreater(s["results"]["preparation"]["fill_grains"], 0)
+        self.assertGreater(s["results"]["T_max"], 0.0)
+
     def test_refinement_shortens_the_sheet_elements_with_the_grains(self):
         # Each grain size's run: grains scaled by the factor, the sheet's elements too (its
         # discretisation belongs to the interface's micro model), its flexural rigidity
