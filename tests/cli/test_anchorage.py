@@ -9,11 +9,11 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
 import tomllib
 import unittest
 from pathlib import Path
 
+from cli_case import CliCase
 from small_scenarios import shear
 
 GEODEM = None
@@ -39,19 +39,7 @@ def run(*args, timeout=600):
     return subprocess.run([GEODEM, *args], capture_output=True, text=True, timeout=timeout)
 
 
-class AnchorageTest(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = Path(self.tmp.name)
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def write(self, text, name="s.toml"):
-        p = self.dir / name
-        p.write_text(text)
-        return str(p)
-
+class AnchorageTest(CliCase):  # (a temporary folder per test and write())
     def test_check_examples(self):
         for ex in sorted((ROOT / "examples" / "interface_shear2d").glob("*.toml")):
             r = run("check", str(ex))
