@@ -85,13 +85,19 @@ std::vector<Point2> sheet_path_nodes(const AnchorGeometry& g, double y0, double 
 }
 
 bool overlaps_trench(const AnchorGeometry& g, double y0, const Point2& x, double r) {
-  if (g.edge_radius > 0.0) {
-    // The rounded edge: within the arc's angle, seen from its centre, the foundation ends
-    // at the arc.
-    const auto b = sheet_bend(g, y0);
+  const auto b = g.edge_radius > 0.0 ? sheet_bend(g, y0) : std::nullopt;
+  if (b) {
+    // The rounded edge cuts the wedge between the arc and the sharp corner: a disc whose
+    // centre lies within the arc's angle, seen from its centre, reaching past the arc and
+    // not wholly beyond either straight part's line (the trench side's or the run-out's).
+    // The angle alone is an unbounded sector: it once cut the foundation behind the trench
+    // down to the arc's centre.
     const Point2 q = x - b->centre, s0 = b->start - b->centre, s1 = b->end - b->centre;
     const bool in_sector = cross(s0, q) <= 0.0 && cross(q, s1) <= 0.0;
-    if (in_sector && q.norm() + r > b->radius) return true;
+    // (s0 and s1 point from the centre to the tangent lines, which lie a radius along them)
+    const bool within_lines =
+        q.dot(s0) < b->radius * (b->radius + r) && q.dot(s1) < b->radius * (b->radius + r);
+    if (in_sector && within_lines && q.norm() + r > b->radius) return true;
   }
   if (g.shape == "L") {
     const Point2 lo(g.runout_length, y0 - g.trench_depth), hi(g.runout_length + g.trench_width, y0);

@@ -213,6 +213,10 @@ TEST(Anchorage, RoundedEdgeLaysTheSheetOnAnArc) {
     EXPECT_FALSE(overlaps_trench(g, y0, outside, 0.0));
     EXPECT_FALSE(overlaps_trench(g, y0, b->centre, 0.05));
     EXPECT_TRUE(overlaps_trench(g, y0, b->corner - Point2(0.005, 0.005), 0.0));
+    // The foundation behind the trench stays up to the run-out level (the arc's angle alone,
+    // an unbounded sector, once cut it down to the arc's centre, a radius lower).
+    for (double x : {g.runout_length + g.trench_width + 0.02, 1.95})
+      EXPECT_FALSE(overlaps_trench(g, y0, Point2(x, y0 - 0.03), 0.01)) << shape << " x " << x;
   }
   // A sharp edge: no arc, the nodes of sheet_nodes.
   AnchorGeometry g = anchor("L");
