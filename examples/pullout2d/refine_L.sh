@@ -2,7 +2,7 @@
 # Grain refinement of the L-shaped anchors: each example's 3 seeds at grain sizes 1,
 # 1/sqrt(2) and 1/2 times its own (same micro parameters, geometry and sheet; up to about
 # 15,000 grains a run), pulled to 200 mm (the peaks lie at 26-164 mm). Prints each
-# summary's refinement block; the figures go to expected/. About 63 minutes on 2 cores.
+# summary's refinement block; the figures go to expected/. About 50-65 minutes on 2 cores.
 #
 # More seeds: FIRST_SEED=4 FACTORS='[1.0, 0.5]' refine_L.sh runs/refine46 runs seeds 4-6 at
 # the full and the half grain size (about 33 minutes) and prints the same lines; its figures
