@@ -121,6 +121,8 @@ bool PulloutRun::record_pull(double d_record) {
                                      parts.carried[kTrenchPart],
                                      parts.normal[kTrenchPart]};
     if (root) history.row(row);
+    // Rows are equally spaced in displacement: their plain mean weighs the half evenly.
+    if (u.displacement >= 0.5 * s.max_displacement) u.late_sum += T, ++u.late_rows;
     if (T > u.t_max) {
       u.t_max = T, u.d_at_max = u.displacement, u.soil_at_max = soil;
       u.soil_median_at_max = median, u.near_at_max = near, u.nodes_at_max = nodes;

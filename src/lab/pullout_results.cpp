@@ -106,6 +106,7 @@ void start_pull(Pull& u, const World<2>& w, const Particles<2>& P, const Pullout
   u.tension_steps = 0;
   u.t_max = u.d_at_max = u.soil_at_max = u.displacement = 0.0;
   u.soil_median_at_max = u.near_at_max = u.nodes_at_max = 0.0;
+  u.late_sum = 0.0, u.late_rows = 0;
   u.pull_start = w.step;
   // The bend: where an L or V turns from the run-out (the middle of the arc round a
   // rounded trench edge, with the band reaching both its ends).
@@ -155,6 +156,8 @@ void pull_results(const Pull& u, const World<2>& w, const Particles<2>& P, const
   results["grains"] = P.size();
   results["T_max"] = u.t_max;
   results["displacement_at_T_max"] = u.d_at_max;
+  results["T_residual"] =
+      u.late_rows > 0 ? u.late_sum / static_cast<double>(u.late_rows) : std::nan("");
   results["T_analytic_slip"] = u.est.tension;
   results["T_analytic_soil"] = u.est_soil.tension;
   const bool slip_governs = u.est.tension <= u.est_soil.tension;

@@ -36,6 +36,10 @@ struct Pull {
   std::uint64_t tension_steps = 0;
   double t_max = 0.0, d_at_max = 0.0, soil_at_max = 0.0, displacement = 0.0;
   double soil_median_at_max = 0.0, near_at_max = 0.0, nodes_at_max = 0.0;
+  // The rows of the pull's second half: their tensions' sum and count (T_residual, the
+  // sliding resistance; a peak can be a short jam of grains against the sheet).
+  double late_sum = 0.0;
+  std::uint64_t late_rows = 0;
   std::uint64_t pull_start = 0;
   // The sheet's parts (lab/sheet_parts.hpp): the bend's corner (none for a run-out) and its
   // band; the sums of the current row, the first row's means and those of T_max's row.
@@ -53,7 +57,7 @@ struct Pull {
     a(tension_sum), a(tension_steps), a(t_max), a(d_at_max), a(soil_at_max), a(displacement);
     a(soil_median_at_max), a(near_at_max), a(nodes_at_max), a(pull_start);
     a(has_corner), a(corner), a(corner_band), a(parts_sum), a(parts_first), a(parts_at_max);
-    a(parts_first_set);
+    a(parts_first_set), a(late_sum), a(late_rows);
   }
 
   // Adds a step of the pull to the row's sums: the clamp's tension and the sheet's parts.

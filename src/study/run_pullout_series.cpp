@@ -76,12 +76,12 @@ nlohmann::json run_pullout_series(const toml::table& root, const PulloutSettings
     csv.open(cat(opt.out_dir, "/pullout_runs.csv"),
              {"radius_factor", "seed", "grains", "T_max", "displacement_at_T_max",
               "soil_displacement_median", "soil_ratio", "sheet_slip_ratio", "slippage",
-              "T_analytic_slip", "T_analytic_soil", "wall_s"});
+              "T_analytic_slip", "T_analytic_soil", "wall_s", "T_residual"});
   nlohmann::json groups = nlohmann::json::array();
-  std::vector<double> x_fit, t_fit;
+  std::vector<double> x_fit, t_fit, r_fit;
   std::size_t i = 0;
   for (double f : factors) {
-    std::vector<double> tmax, dmax, soil, grains, slip, soil_est, wall;
+    std::vector<double> tmax, dmax, soil, grains, slip, soil_est, wall, residual;
     std::map<std::string, int> mechanisms;
     nlohmann::json ids = nlohmann::json::array();
     for (int k = 0; k < s.seeds; ++k, ++i) {
@@ -96,13 +96,15 @@ nlohmann::json run_pullout_series(const toml::table& root, const PulloutSettings
       slip.push_back(number(r["T_analytic_slip"]));
       soil_est.push_back(number(r["T_analytic_soil"]));
       wall.push_back(number(sm["timing"]["wall_s"]));
+      residual.push_back(number(r["T_residual"]));
       const std::string m = r["mechanism"].get<std::string>();
       ++mechanisms[m];
       const auto& mm = r["mechanism_measures"];
       if (study_root())
         csv.row({f, static_cast<double>(s.seed) + k, grains.back(), tmax.back(), dmax.back(),
                  soil.back(), number(mm["soil_ratio"]), number(mm["sheet_slip_ratio"]),
-                 m == "slippage" ? 1.0 : 0.0, slip.back(), soil_est.back(), wall.back()});
+                 m == "slippage" ? 1.0 : 0.0, slip.back(), soil_est.back(), wall.back(),
+                 residual.back()});
     }
     nlohmann::json g;
     g["radius_factor"] = f;
@@ -111,6 +113,7 @@ nlohmann::json run_pullout_series(const toml::table& root, const PulloutSettings
     g["runs"] = ids;
     g["completed"] = tmax.size();
     g["T_max"] = stats(tmax);
+    g["T_residual"] = stats(residual);
     g["displacement_at_T_max"] = stats(dmax);
     g["soil_displacement_median"] = stats(soil);
     g["grains"] = stats(grains);
@@ -125,6 +128,7 @@ nlohmann::json run_pullout_series(const toml::table& root, const PulloutSettings
       g["T_max_over_design"] = mean(tmax) / design;
       x_fit.push_back(g["d50_over_cover"].get<double>());
       t_fit.push_back(mean(tmax));
+      r_fit.push_back(mean(residual));
     }
     groups.push_back(std::move(g));
   }
@@ -133,6 +137,7 @@ nlohmann::json run_pullout_series(const toml::table& root, const PulloutSettings
   results["groups"] = groups;
   // The first grain size's statistics, at the top for a plain seed series.
   results["T_max"] = groups[0]["T_max"];
+  results["T_residual"] = groups[0]["T_residual"];
   results["mechanisms"] = groups[0]["mechanisms"];
   if (factors.size() > 1 && x_fit.size() >= 2) {
     const LinearFit fit = fit_line(x_fit, t_fit);
@@ -144,7 +149,9 @@ nlohmann::json run_pullout_series(const toml::table& root, const PulloutSettings
         {"slope", fit.slope},
         {"r2", fit.r2},
         {"change_finest_vs_first",
-         finest < t_fit.size() ? t_fit[finest] / t_first - 1.0 : std::nan("")}};
+         finest < t_fit.size() ? t_fit[finest] / t_first - 1.0 : std::nan("")},
+        {"residual_change_finest_vs_first",
+         finest < r_fit.size() ? r_fit[finest] / r_fit.front() - 1.0 : std::nan("")}};
   }
   nlohmann::json failed = failed_runs(runs, summaries);
   results["failed_runs"] = failed;

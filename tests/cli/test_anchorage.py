@@ -240,6 +240,18 @@ soil_friction_deg = 30.0
         self.assertTrue((out / "pullout_seeds.png").exists())
         for k in (4, 5, 6):
             self.assertTrue((out / "runs" / f"seed{k}" / "history.csv").exists())
+        # T_residual: the mean of the history rows over the pull's second half (rows equally
+        # spaced in displacement), per run and as the series' statistics.
+        residual = [float(r["T_residual"]) for r in rows]
+        for k, value in zip((4, 5, 6), residual):
+            with open(out / "runs" / f"seed{k}" / "history.csv") as f:
+                late = [float(h["tension"]) for h in csv.DictReader(f)
+                        if float(h["displacement"]) >= 0.005]
+            self.assertGreaterEqual(len(late), 5)
+            self.assertAlmostEqual(value, sum(late) / len(late), delta=1e-9 * value)
+            self.assertLessEqual(value, tmax[(k - 4)])
+        self.assertAlmostEqual(res["T_residual"]["mean"], sum(residual) / 3,
+                               delta=1e-9 * res["T_residual"]["mean"])
 
     def test_a_thick_sheet_is_covered_without_overlap(self):
         # A sheet half a grain radius thick: each layer's cloud of grains starts above the
@@ -290,6 +302,9 @@ soil_friction_deg = 30.0
         self.assertEqual(r.returncode, 0, r.stderr)
         res = json.loads((out / "summary.json").read_text())["results"]
         self.assertEqual([g["radius_factor"] for g in res["groups"]], [1.0, 0.5])
+        coarse_r, fine_r = (g["T_residual"]["mean"] for g in res["groups"])
+        self.assertAlmostEqual(res["refinement"]["residual_change_finest_vs_first"],
+                               fine_r / coarse_r - 1.0, places=12)
         runs = {}
         for d in sorted((out / "runs").iterdir()):
             sc = tomllib.loads((d / "scenario.toml").read_text())
