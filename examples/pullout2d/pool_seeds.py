@@ -5,11 +5,11 @@ deviation and cv of all the seeds, and the change of the mean from the largest g
 each smaller size with its standard error.
 
 A second table gives the sliding tension: the mean tension over the late part of the pull
-(default 100-200 mm, --window FROM TO in metres), read from each run's history.csv, and the
+(default from 100 mm to the end, --window FROM TO in metres), read from each run's history.csv, and the
 sheet's parts' mean normal forces over the same window (run-out, bend, trench). A peak can
 be a short jam; the sliding tension is what the interface holds while it slides. For
 refine_L.sh's 200 mm pulls the default window is the runs' own T_residual (the pull's
-second half).
+second half, its last row a hair past 200 mm included).
 
 usage: pool_seeds.py [--window FROM TO] FOLDER [FOLDER ...]
 """
@@ -79,7 +79,8 @@ def sliding_table(runs, sizes, lo, hi):
     full_values = [v[0] for v in late(sizes[0]).values()]
     full = mean_std(full_values)
     print()
-    print(f"Sliding tension: means over {1e3 * lo:.0f}-{1e3 * hi:.0f} mm of pull (kN/m)")
+    to = "the end" if math.isinf(hi) else f"{1e3 * hi:.0f} mm"
+    print(f"Sliding tension: means from {1e3 * lo:.0f} mm of pull to {to} (kN/m)")
     print()
     print("| radius factor | seeds | tension per seed | mean +- std | cv | change of the mean | its standard error | normal force: run-out, bend, trench (means) |")
     print("| ---: | ---: | --- | ---: | ---: | ---: | ---: | --- |")
@@ -99,7 +100,7 @@ def sliding_table(runs, sizes, lo, hi):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--window", type=float, nargs=2, default=[0.1, 0.2], metavar=("FROM", "TO"))
+    ap.add_argument("--window", type=float, nargs=2, default=[0.1, math.inf], metavar=("FROM", "TO"))
     ap.add_argument("folders", nargs="+")
     a = ap.parse_args()
     runs = read_runs(a.folders, *a.window)
